@@ -1,0 +1,35 @@
+#pragma once
+// Connection settings as a plain value, parsed from a URL:
+//   serial:///dev/ttyUSB0?baud=115200      (also Bluetooth SPP: serial:///dev/rfcomm0)
+//   tcp://host:5760                         (client)   tcp://:5760?listen=1 (server)
+//   udp://:14550                            (listen)   udp://host:14550     (send to)
+// Query parameters other than the known ones are kept in `options`.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace irgs::comms {
+
+enum class LinkScheme { kSerial, kTcp, kUdp };
+
+struct LinkUrl {
+  LinkScheme scheme = LinkScheme::kSerial;
+  std::string device;  // serial device path
+  std::string host;    // tcp/udp host, empty = any
+  std::uint16_t port = 0;
+  std::uint32_t baud = 57600;
+  std::map<std::string, std::string> options;
+
+  std::string toString() const;
+};
+
+struct LinkUrlResult {
+  std::optional<LinkUrl> url;
+  std::string error;  // set when url is empty
+};
+
+LinkUrlResult parseLinkUrl(const std::string& text);
+
+}  // namespace irgs::comms

@@ -1,0 +1,40 @@
+#pragma once
+// What a robot reports, simulated or linked. Units SI; poses in the world frame.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/geometry/types.hpp"
+
+namespace irgs {
+
+// One sonar measurement. `range_m` is meaningful only when `echo` is true; without an echo
+// the sonar saw nothing up to its maximum range (which is itself information: free space).
+struct SonarReading {
+  int sensor = 0;  // index into RobotProfile::sonars
+  double range_m = 0.0;
+  bool echo = false;
+};
+
+struct VelocityCommand {
+  double linear_mps = 0.0;
+  double angular_radps = 0.0;
+  friend bool operator==(const VelocityCommand&, const VelocityCommand&) = default;
+};
+
+// A snapshot of the robot state at time_s. Sonar readings are those taken since the previous
+// sample (each sonar fires at its own rate), so a consumer integrates every sample exactly once.
+struct TelemetrySample {
+  double time_s = 0.0;
+  Pose2 odometry_pose;             // what the robot believes (dead reckoning)
+  std::optional<Pose2> true_pose;  // ground truth, simulator only
+  VelocityCommand measured_velocity;
+  std::int64_t left_ticks = 0;  // cumulative encoder counts
+  std::int64_t right_ticks = 0;
+  std::vector<SonarReading> sonar;  // fresh readings taken at this sample's time
+  std::uint32_t bumpers = 0;        // bit i = bumper i pressed
+  std::vector<double> proximity_m;  // per proximity sensor; max range when nothing seen
+};
+
+}  // namespace irgs

@@ -1,0 +1,103 @@
+#pragma once
+// The world model: everything IRGS knows about an environment, in world metres and radians.
+// Maps are plain values; file formats live in map_file.hpp (JSON) and ros_map.hpp (ROS).
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry/types.hpp"
+#include "core/world/raster_map.hpp"
+
+namespace irgs {
+
+// A wall as a polyline (two points = one segment). The robot-facing side is not stored:
+// thin walls reflect on both faces. `closed` joins the last point back to the first.
+struct Wall {
+  std::string id;
+  std::vector<Vec2> points;
+  bool closed = false;
+  nlohmann::json extra = nlohmann::json::object();  // unknown keys, preserved on save
+};
+
+// A solid polygon obstacle (vertices in either winding; stored counter-clockwise after load).
+struct Obstacle {
+  std::string id;
+  std::vector<Vec2> polygon;
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+enum class PointFeatureKind { kCorner, kEdge };  // concave corner / convex edge (000_…)
+
+struct PointFeature {
+  std::string id;
+  PointFeatureKind kind = PointFeatureKind::kCorner;
+  Vec2 position = Vec2::Zero();
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+// A ceiling marker (002_…: 20 cm fluorescent-red square), pose on the ceiling plane.
+struct CeilingMarker {
+  std::string id;
+  Vec2 position = Vec2::Zero();
+  double heading_rad = 0.0;
+  double size_m = 0.2;
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+// A ceiling light (a fluorescent tube) from a to b on the ceiling plane.
+struct CeilingLight {
+  std::string id;
+  Segment tube;
+  double width_m = 0.1;
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+struct TopoNode {
+  std::string id;
+  Vec2 position = Vec2::Zero();
+  std::string marker_id;  // ceiling marker at this node, may be empty
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+struct TopoEdge {
+  std::string from;
+  std::string to;
+  bool bidirectional = true;
+  nlohmann::json extra = nlohmann::json::object();
+};
+
+struct TopoGraph {
+  std::vector<TopoNode> nodes;
+  std::vector<TopoEdge> edges;
+};
+
+// A raster layer: a ROS map referenced by the JSON map (path relative to the map file).
+struct RasterLayer {
+  std::string source;  // as written in the file
+  RasterMap raster;
+};
+
+struct WorldMap {
+  static constexpr int kFormatVersion = 1;
+
+  std::string name;
+  std::vector<Wall> walls;
+  std::vector<Obstacle> obstacles;
+  std::vector<PointFeature> features;
+  std::vector<CeilingMarker> markers;
+  std::vector<CeilingLight> lights;
+  TopoGraph graph;
+  Pose2 start;
+  std::optional<RasterLayer> raster;
+  double ceiling_height_m = 2.5;
+  nlohmann::json extra = nlohmann::json::object();  // unknown top-level keys
+
+  // Every reflecting segment: wall pieces and obstacle edges.
+  std::vector<Segment> segments() const;
+  // Bounding box of walls, obstacles, features and the raster.
+  Box2 bounds() const;
+};
+
+}  // namespace irgs
