@@ -1,9 +1,16 @@
 #pragma once
 // A log-odds occupancy grid that grows as the robot explores (1 cm cells by default), updated
 // from sonar readings with a cone inverse sensor model.
+//
+// Cell (col, row) covers world [col*res, (col+1)*res) x [row*res, (row+1)*res): cell (0, 0) has
+// its lower-left corner at the world origin, columns grow with +x, rows with +y. Storage is a
+// sparse set of 64x64-cell tiles allocated on first write (docs/decisions/grid.md says why).
+// The grid is a plain value: copies are deep and independent.
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/geometry/types.hpp"
@@ -30,15 +37,35 @@ struct SonarInverseModel {
   double no_echo_free_range_m = 1.5;
 };
 
+// What is wrong with a model (non-finite increments, negative thickness or range, clamp_min >
+// clamp_max), or nothing when it is usable.
+std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model);
+
 class OccupancyGrid {
  public:
+  // Cell indices are kept within +-kMaxCellIndex so index arithmetic never overflows
+  // (+-10,000 km at 1 cm cells).
+  static constexpr int kMaxCellIndex = 1 << 30;
+  // Largest cone radius accepted by integrateSonar, in cells (327 m at 1 cm).
+  static constexpr int kMaxConeRadiusCells = 1 << 15;
+
+  // Throws std::invalid_argument unless resolution_m is finite and > 0.
   explicit OccupancyGrid(double resolution_m = 0.01);
+
+  OccupancyGrid(const OccupancyGrid&) = default;
+  OccupancyGrid& operator=(const OccupancyGrid&) = default;
+  // A moved-from grid is empty (nothing observed), with its resolution kept.
+  OccupancyGrid(OccupancyGrid&& other) noexcept;
+  OccupancyGrid& operator=(OccupancyGrid&& other) noexcept;
 
   double resolution_m() const { return resolution_m_; }
 
-  // Cell containing p. Cells exist everywhere: the grid grows when written.
+  // Cell containing p. Cells exist everywhere: the grid grows when written. Throws
+  // std::out_of_range when p is not finite or beyond +-kMaxCellIndex cells.
   Cell cellAt(const Vec2& p) const;
   Vec2 cellCentre(const Cell& c) const;
+  // True when every point within margin_m of p maps to a cell inside +-kMaxCellIndex.
+  bool isAddressable(const Vec2& p, double margin_m = 0.0) const;
 
   // Log-odds of a cell, 0 for never-observed cells.
   float logOdds(const Cell& c) const;
@@ -48,33 +75,105 @@ class OccupancyGrid {
   // Integrates one sonar cone: apex at origin, boresight heading_rad, full angle beam_width_rad.
   // With echo: free up to range - arc/2, occupied on the arc. Without echo: free up to
   // model.no_echo_free_range_m (capped at range).
+  //
+  // Cell membership (the exact criterion, shared with the tests): with d = cellCentre - origin,
+  // a = beam/2, u_r = (cos(h-a), sin(h-a)), u_l = (cos(h+a), sin(h+a)), the cell is in the beam
+  // when cross(u_r, d) >= 0 and cross(d, u_l) >= 0; it is free when |d|^2 < r_free^2 and
+  // occupied when r_free^2 <= |d|^2 <= (range + arc/2)^2 (echo only), r_free = max(0, range -
+  // arc/2) with an echo, min(range, no_echo_free_range_m) without. Rasterised by rows (one
+  // sqrt per row, none per cell), see sonar_cone.hpp.
+  //
+  // Throws std::invalid_argument for non-finite arguments, beam_width_rad outside (0, pi),
+  // negative range, an invalid model (sonarInverseModelError), a cone radius beyond
+  // kMaxConeRadiusCells or a cone reaching beyond the addressable cells.
   void integrateSonar(const Vec2& origin, double heading_rad, double beam_width_rad, double range_m,
                       bool echo, const SonarInverseModel& model);
 
+  // The reference for integrateSonar, for tests and benchmarks only: visits every cell of the
+  // cone's bounding box and classifies it with atan2/hypot (|wrap(atan2(d) - h)| <= a,
+  // hypot(d) against the radii). Same arguments and exceptions as integrateSonar.
+  void integrateSonarNaive(const Vec2& origin, double heading_rad, double beam_width_rad,
+                           double range_m, bool echo, const SonarInverseModel& model);
+
   // Bounding box of all observed cells in world metres (empty box when nothing observed).
   Box2 observedBounds() const;
-  // Area of observed cells (known free or occupied), m².
+  // Area of observed cells (known free or occupied), m². O(1).
   double exploredArea_m2() const;
+  std::uint64_t observedCellCount() const { return observed_cells_; }
 
   // Cells touched since the last call, as a box in cell coordinates, for incremental redraw.
   struct CellRect {
     int col0 = 0, row0 = 0, col1 = -1, row1 = -1;  // inclusive; empty when col1 < col0
     bool empty() const { return col1 < col0 || row1 < row0; }
+    int width() const { return empty() ? 0 : col1 - col0 + 1; }
+    int height() const { return empty() ? 0 : row1 - row0 + 1; }
+    void extend(int col, int row) {
+      if (empty()) {
+        col0 = col1 = col;
+        row0 = row1 = row;
+        return;
+      }
+      col0 = col < col0 ? col : col0;
+      col1 = col > col1 ? col : col1;
+      row0 = row < row0 ? row : row0;
+      row1 = row > row1 ? row : row1;
+    }
+    void extend(const CellRect& other) {
+      if (other.empty())
+        return;
+      extend(other.col0, other.row0);
+      extend(other.col1, other.row1);
+    }
+    friend bool operator==(const CellRect&, const CellRect&) = default;
   };
   CellRect takeDirtyRect();
+  // Observed cells as a box in cell coordinates (empty when nothing observed).
+  CellRect observedCellRect() const { return observed_rect_; }
+
+  // Bulk read for drawing: the log-odds of rect's cells, row-major from (col0, row0) (row0 is
+  // the smallest y), width() * height() values; never-observed cells are NaN. Cost is one
+  // copy per tile row, so a whole 20 m x 20 m grid at 1 cm reads in a few milliseconds.
+  void copyLogOdds(const CellRect& rect, std::vector<float>& out) const;
 
   // Exports the observed part as a raster with ROS-style values (-1, 0..100).
   RasterMap toRaster() const;
 
   // Number of cell updates performed since construction (for benchmarks and tests).
   std::uint64_t cellUpdates() const { return cell_updates_; }
+  // Tiles allocated so far and the memory they hold (each tile is kTileSize² floats).
+  std::size_t tileCount() const { return tiles_.size(); }
+  std::size_t memoryBytes() const;
+
+  // Same resolution and the same observed cells with bit-identical log-odds (counters such as
+  // cellUpdates() and the dirty rect are not compared).
+  friend bool operator==(const OccupancyGrid& a, const OccupancyGrid& b);
+
+  static constexpr int kTileShift = 6;
+  static constexpr int kTileSize = 1 << kTileShift;  // cells per tile side
+  static constexpr int kTileCells = kTileSize * kTileSize;
 
  private:
-  // Storage is described in occupancy_grid.cpp.
+  // Tile (tx, ty) holds cells col in [tx*64, tx*64+63], row in [ty*64, ty*64+63], row-major,
+  // NaN = never observed. tiles_ owns them (inner vectors keep their buffers when the outer one
+  // grows); tile_index_ maps the packed tile coordinates to a position in tiles_.
+  using TileKey = std::uint64_t;
+  static TileKey tileKey(int tx, int ty);
+  const float* findTile(int tx, int ty) const;
+  float* findOrCreateTile(int tx, int ty);
+  // Adds delta to cells [col0, col1] of one row, clamping to [lo, hi]. The tile of each run of
+  // cells is taken from cache (a table over the cone's tiles) to avoid hashing per run.
+  struct TileCache;
+  void applySpan(int row, int col0, int col1, float delta, float lo, float hi, TileCache& cache);
+  void applyCell(int col, int row, float delta, float lo, float hi);
+  void noteTouched(const CellRect& cells);
+
   double resolution_m_;
   std::uint64_t cell_updates_ = 0;
-  struct Storage;
-  std::shared_ptr<Storage> storage_;
+  std::uint64_t observed_cells_ = 0;
+  CellRect observed_rect_;
+  CellRect dirty_rect_;
+  std::vector<std::vector<float>> tiles_;
+  std::unordered_map<TileKey, std::uint32_t> tile_index_;
 };
 
 }  // namespace irgs
