@@ -23,6 +23,8 @@ struct DriveGeometry {
 
   double ticksPerWheelRad() const { return encoder_counts_per_motor_rad * gear_ratio; }
   double metresPerTick() const { return wheel_radius_m / ticksPerWheelRad(); }
+
+  nlohmann::json extra = nlohmann::json::object();  // unknown keys, preserved on save
 };
 
 struct MotionLimits {
@@ -30,6 +32,8 @@ struct MotionLimits {
   double max_turn_rate_radps = 1.5;
   double max_accel_mps2 = 0.8;
   double max_turn_accel_radps2 = 4.0;
+
+  nlohmann::json extra = nlohmann::json::object();  // unknown keys, preserved on save
 };
 
 // An ultrasonic range sensor. Mount pose is in the body frame.
@@ -39,7 +43,8 @@ struct SonarSpec {
   double beam_width_rad = degToRad(25.0);  // full cone angle
   double min_range_m = 0.03;
   double max_range_m = 4.0;
-  double rate_hz = 10.0;  // how often this sonar fires
+  double rate_hz = 10.0;                            // how often this sonar fires
+  nlohmann::json extra = nlohmann::json::object();  // unknown keys, preserved on save
 };
 
 // A contact switch on the body: triggers when the body edge near `position` touches.
@@ -48,6 +53,7 @@ struct BumperSpec {
   Vec2 position = Vec2::Zero();  // on the body outline, body frame
   double normal_rad = 0.0;       // outward normal of the face it sits on
   double half_width_m = 0.05;    // the bar widening its sensing area along the face
+  nlohmann::json extra = nlohmann::json::object();
 };
 
 // An infrared proximity (photo) sensor: a short single ray, read as a distance.
@@ -55,6 +61,8 @@ struct ProximitySpec {
   std::string name;
   Pose2 mount;
   double max_range_m = 0.3;
+  double rate_hz = 20.0;  // how often the reading is refreshed
+  nlohmann::json extra = nlohmann::json::object();
 };
 
 struct RobotProfile {

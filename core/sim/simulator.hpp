@@ -2,6 +2,24 @@
 // Deterministic, seeded, fixed-step simulation of a differential-drive robot in a WorldMap
 // (vector walls/obstacles, or the map's raster layer), with odometry error and sonar, bumper
 // and proximity sensors. Pure: no clocks, no threads; the caller decides how often to step.
+//
+// Model (details and the reasons in docs/decisions/simulator.md):
+// * Drive: the commanded (v, omega) is clamped to the profile's limits and approached at the
+//   profile's accelerations; the wheels turn as the nominal kinematics ask (diff_drive.hpp).
+// * Truth vs belief: encoders count the wheel rotation (quantised ticks); odometry integrates
+//   ticks with the NOMINAL wheel radius and wheelbase. The true motion scales each wheel's
+//   ground travel by the error model's scale factor and random slip and uses the TRUE wheelbase,
+//   so odometry drifts from truth exactly as configured.
+// * Collisions: the body polygon never penetrates geometry. A step that would is cut to the
+//   largest fraction that does not (bisection); the robot then stalls (velocity 0) and the
+//   encoders count only the travel made. A robot placed overlapping geometry may move freely
+//   until it is clear. An empty body outline is a point robot that never collides.
+// * Sensors fire at their own rates; sensor i of n first fires at (i + 1) / n of its period, so
+//   they do not all fire in one step; at most one firing per sensor per step.
+// * Random numbers: one independent SimRandom stream per purpose (motion, sonar, proximity),
+//   all derived from SimConfig::seed (random.hpp): the same seed gives identical samples, a
+//   different seed different noise. The random draws are bit-identical on every platform; the
+//   trigonometry of the motion comes from the platform's libm.
 
 #include <cstdint>
 #include <memory>
@@ -9,6 +27,7 @@
 
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
+#include "core/sim/sim_world.hpp"
 #include "core/world/world_map.hpp"
 
 namespace irgs {
@@ -36,23 +55,35 @@ struct SimConfig {
   OdometryErrorModel odometry;
   SonarNoiseModel sonar;
   double proximity_stddev_m = 0.002;
+  // Ray caster for the vector segments (kNaive only for benchmarks and tests).
+  SegmentCasterKind segment_caster = SegmentCasterKind::kIndexed;
+  // Which raster cells are solid (see solid_raster.hpp: unknown cells are solid by default).
+  RasterSolidity raster;
+  // A bumper reports contact when geometry is this close to its bar (the switch's travel).
+  double bumper_contact_m = 0.002;
 };
 
 class Simulator {
  public:
+  // Throws std::invalid_argument for a config or profile the model cannot run (dt <= 0,
+  // non-positive wheel radius, a sonar with min_range >= max_range, ...).
   Simulator(WorldMap map, RobotProfile profile, SimConfig config);
   ~Simulator();
   Simulator(Simulator&&) noexcept;
   Simulator& operator=(Simulator&&) noexcept;
 
   // Sets the commanded body velocity; limits and accelerations of the profile apply.
+  // Throws std::invalid_argument for non-finite values.
   void setCommand(const VelocityCommand& command);
   // Advances one fixed step of config().dt_s and returns the sample for the new time.
   TelemetrySample step();
+  // step() writing into `sample`, reusing its vectors' capacity (no allocation once warm).
+  void step(TelemetrySample& sample);
 
   // Replaces the world (e.g. after an edit) keeping the robot where it is.
   void setMap(WorldMap map);
-  // Teleports the robot; odometry restarts from the same pose.
+  // Teleports the robot; odometry restarts from the same pose. The robot stops (the command is
+  // cleared). Throws std::invalid_argument for a non-finite pose.
   void resetPose(const Pose2& pose);
 
   double time_s() const;
@@ -61,6 +92,14 @@ class Simulator {
   const WorldMap& map() const;
   const RobotProfile& profile() const;
   const SimConfig& config() const;
+
+  const VelocityCommand& command() const;
+  // The true body velocity during the last step (after limits, accelerations and collisions).
+  VelocityCommand trueVelocity() const;
+  // Bumper bits of the last step (bit i = profile().bumpers[i]).
+  std::uint32_t bumpers() const;
+  std::int64_t stepCount() const;
+  const SimWorld& world() const;
 
  private:
   struct Impl;

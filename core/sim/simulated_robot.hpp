@@ -1,0 +1,69 @@
+#pragma once
+// The in-process robot: a Simulator behind the Robot interface, with the ground station owning
+// its clock (SimulationControl).
+//
+// Time: update(wall_elapsed_s) advances simulated time by wall_elapsed_s * speedFactor(), in
+// whole fixed steps; the fraction of a step left over is carried to the next call, so the
+// simulated clock tracks wall time without drift. Speed factor 0 means "as fast as possible":
+// each update() runs maxStepsPerUpdate() steps (default kDefaultMaxSteps = 1000 steps, 10 s of
+// simulated time at dt = 10 ms), whatever the wall time. A wall interval longer than
+// kMaxWallStep_s (a stalled host) is not replayed: the simulation pauses for the excess; and no
+// update() runs more than maxStepsPerUpdate() steps (a speed factor beyond what the host can
+// run behaves as "max", the excess is dropped, not owed). Paused,
+// update() runs no steps; singleStep() runs exactly one, its sample returned by the next
+// update().
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/robot/robot.hpp"
+#include "core/sim/simulator.hpp"
+
+namespace irgs {
+
+class SimulatedRobot : public Robot, public SimulationControl {
+ public:
+  static constexpr int kDefaultMaxSteps = 1000;
+  static constexpr double kMaxWallStep_s = 1.0;
+
+  SimulatedRobot(WorldMap map, RobotProfile profile, SimConfig config = {});
+
+  // Robot
+  const RobotProfile& profile() const override;
+  std::string describe() const override;
+  void drive(const VelocityCommand& command) override;
+  void stop() override;
+  std::vector<TelemetrySample> update(double wall_elapsed_s) override;
+  SimulationControl* simulationControl() override { return this; }
+
+  // SimulationControl
+  void setPaused(bool paused) override;
+  bool paused() const override;
+  // factor >= 0 (0 = as fast as possible); throws std::invalid_argument otherwise.
+  void setSpeedFactor(double factor) override;
+  double speedFactor() const override;
+  void singleStep() override;
+
+  // Steps per update() at speed factor 0; throws std::invalid_argument unless >= 1.
+  void setMaxStepsPerUpdate(int steps);
+  int maxStepsPerUpdate() const { return max_steps_; }
+
+  // The simulator itself, for truth display, teleporting and configuration.
+  Simulator& simulator() { return sim_; }
+  const Simulator& simulator() const { return sim_; }
+  // Replaces the world keeping the robot where it is.
+  void setMap(WorldMap map);
+
+ private:
+  void runSteps(std::int64_t count, std::vector<TelemetrySample>& out);
+
+  Simulator sim_;
+  bool paused_ = false;
+  double speed_ = 1.0;
+  int max_steps_ = kDefaultMaxSteps;
+  double carry_steps_ = 0.0;              // fraction of a step owed from earlier updates, in [0, 1)
+  std::vector<TelemetrySample> pending_;  // produced by singleStep(), not yet returned
+};
+
+}  // namespace irgs
