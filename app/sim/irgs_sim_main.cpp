@@ -79,9 +79,8 @@ int main(int argc, char** argv) {
   spec.map = std::move(*map.map);
   spec.profile = std::move(*robot.profile);
   spec.start = options.start;
+  spec.sim = options.ideal ? irgs::idealSimConfig(spec.sim) : irgs::typicalSimConfig(spec.sim);
   spec.sim.seed = options.seed;
-  if (options.ideal)
-    spec.sim = irgs::idealSimConfig(spec.sim);
   spec.duration_s = options.duration_s.value_or(
       spec.script.empty() ? 60.0 : std::max(spec.script.lastTime_s(), spec.sim.dt_s));
   spec.grid_resolution_m = options.grid_resolution_m;

@@ -8,6 +8,14 @@
 
 namespace irgs {
 
+SimConfig typicalSimConfig(SimConfig base) {
+  base.odometry.left_scale = 1.0005;
+  base.odometry.right_scale = 0.9995;
+  base.odometry.wheelbase_scale = 1.005;
+  base.odometry.slip_stddev = 0.001;
+  return base;
+}
+
 SimConfig idealSimConfig(SimConfig base) {
   base.odometry = OdometryErrorModel{};
   base.sonar.range_stddev_m = 0.0;
