@@ -1,6 +1,37 @@
 #include "core/world/world_map.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace irgs {
+namespace {
+
+double distanceToSegment(const Vec2& p, const Segment& s) {
+  const Vec2 d = s.b - s.a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (s.a + t * d - p).norm();
+}
+
+bool pointInPolygon(const Vec2& p, const std::vector<Vec2>& polygon) {
+  const std::size_t n = polygon.size();
+  if (n < 3)
+    return false;
+  bool inside = false;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[j];
+    if (distanceToSegment(p, {a, b}) <= 1e-12)
+      return true;
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+}  // namespace
 
 std::vector<Segment> WorldMap::segments() const {
   std::vector<Segment> out;
@@ -43,6 +74,21 @@ Box2 WorldMap::bounds() const {
   if (raster && !raster->raster.empty())
     box.extend(raster->raster.bounds());
   return box;
+}
+
+const Obstacle* WorldMap::obstacleAt(const Vec2& p) const {
+  for (const Obstacle& obstacle : obstacles) {
+    if (pointInPolygon(p, obstacle.polygon))
+      return &obstacle;
+  }
+  return nullptr;
+}
+
+double WorldMap::distanceToNearestSegment(const Vec2& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment& s : segments())
+    best = std::min(best, distanceToSegment(p, s));
+  return best;
 }
 
 }  // namespace irgs

@@ -71,12 +71,17 @@ struct TopoEdge {
 struct TopoGraph {
   std::vector<TopoNode> nodes;
   std::vector<TopoEdge> edges;
+  nlohmann::json extra = nlohmann::json::object();
 };
 
 // A raster layer: a ROS map referenced by the JSON map (path relative to the map file).
 struct RasterLayer {
   std::string source;  // as written in the file
   RasterMap raster;
+  nlohmann::json extra = nlohmann::json::object();
+  // Absolute path the raster was loaded from (not written to files). When set, saveMapFile
+  // writes `source` relative to the new map file's folder so the reference keeps working.
+  std::string resolved_path{};
 };
 
 struct WorldMap {
@@ -92,12 +97,18 @@ struct WorldMap {
   Pose2 start;
   std::optional<RasterLayer> raster;
   double ceiling_height_m = 2.5;
-  nlohmann::json extra = nlohmann::json::object();  // unknown top-level keys
+  nlohmann::json extra = nlohmann::json::object();        // unknown top-level keys
+  nlohmann::json start_extra = nlohmann::json::object();  // unknown keys of "start"
 
   // Every reflecting segment: wall pieces and obstacle edges.
   std::vector<Segment> segments() const;
   // Bounding box of walls, obstacles, features and the raster.
   Box2 bounds() const;
+
+  // The obstacle whose polygon contains p (boundary included), or nullptr.
+  const Obstacle* obstacleAt(const Vec2& p) const;
+  // Distance from p to the nearest wall piece or obstacle edge; +infinity without segments.
+  double distanceToNearestSegment(const Vec2& p) const;
 };
 
 }  // namespace irgs
