@@ -1,0 +1,195 @@
+#pragma once
+// The map view of the ground station: a custom-painted, pannable and zoomable top view of the
+// world map, the live occupancy grid and the robot with its sensors.
+//
+// View model: a uniform scale (pixels per metre) and the world point at the widget centre.
+// World +x points right and +y points up on screen. Static layers (floor, metric grid, raster,
+// walls, obstacles, features, ceiling, graph) are cached in pixmaps that are re-rendered only
+// when the scale changes or the view leaves the cached margin; the occupancy grid is a cached
+// image updated from the grid's dirty rectangle; the robot, sonar cones and trail are painted
+// each frame.
+//
+// Interaction: drag with the left or middle button to pan, wheel to zoom about the cursor,
+// double-click or Home to fit, +/- to zoom about the centre, F to toggle following the robot.
+
+#include <QImage>
+#include <QPainterPath>
+#include <QPixmap>
+#include <QPolygonF>
+#include <QWidget>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "core/geometry/types.hpp"
+#include "core/mapping/occupancy_grid.hpp"
+#include "core/robot/robot_profile.hpp"
+#include "core/robot/telemetry.hpp"
+#include "core/world/world_map.hpp"
+
+namespace irgs::widgets {
+
+class MapCanvas : public QWidget {
+  Q_OBJECT
+
+ public:
+  enum class Layer { kRaster, kGrid, kWalls, kFeatures, kCeiling, kGraph, kSonar, kTrail, kTruth };
+
+  // Zoom limits, pixels per metre.
+  static constexpr double kMinPixelsPerMetre = 0.2;
+  static constexpr double kMaxPixelsPerMetre = 5000.0;
+  // Trail bounds: at most this many points, a new point only after this distance.
+  static constexpr std::size_t kMaxTrailPoints = 20000;
+  static constexpr double kTrailStep_m = 0.02;
+  // A sonar cone is no longer drawn when its reading is older than this (telemetry time).
+  static constexpr double kSonarStale_s = 1.0;
+
+  explicit MapCanvas(QWidget* parent = nullptr);
+  ~MapCanvas() override;
+
+  // Copies the map; the static layers are redrawn.
+  void setWorldMap(const irgs::WorldMap& map);
+  void setRobotProfile(const irgs::RobotProfile& profile);
+
+  // The live occupancy grid (non-owning, may be nullptr; must outlive its use here).
+  // With a mutable grid, gridUpdated() pulls grid->takeDirtyRect() and redraws only that part.
+  // With a const grid the canvas cannot take the dirty rect: gridUpdated() then redraws the whole
+  // observed area unless the caller passes the rect it took itself to gridUpdated(rect).
+  void setGrid(irgs::OccupancyGrid* grid);
+  void setGrid(const irgs::OccupancyGrid* grid);
+  void setGrid(std::nullptr_t);
+  void gridUpdated();
+  void gridUpdated(const irgs::OccupancyGrid::CellRect& dirty_cells);
+
+  // Odometry pose (the robot as drawn), truth ghost when s.true_pose is set, the latest sonar
+  // reading per sensor, bumpers; appends the odometry position to the trail. Samples with
+  // non-finite poses are ignored.
+  void setRobotState(const irgs::TelemetrySample& s);
+  void clearTrail();
+  std::size_t trailSize() const { return trail_.size(); }
+
+  // Fits map bounds, grid bounds and the robot into the view. Until the user pans or zooms,
+  // the view keeps fitting when the widget is resized.
+  void zoomToFit();
+  void setFollowRobot(bool follow);
+  bool followRobot() const { return follow_robot_; }
+  void setLayerVisible(Layer layer, bool visible);
+  bool layerVisible(Layer layer) const;
+
+  double pixelsPerMetre() const { return scale_; }
+  irgs::Vec2 viewCentre() const { return centre_; }
+  // Sets the view directly (clamped to the zoom limits).
+  void setView(const irgs::Vec2& centre, double pixels_per_metre);
+  // Zooms by `factor` keeping the world point under `anchor` (widget coordinates) fixed.
+  void zoomAt(const QPointF& anchor, double factor);
+
+  QPointF worldToWidget(const irgs::Vec2& p) const;
+  irgs::Vec2 widgetToWorld(const QPointF& p) const;
+
+  QSize sizeHint() const override { return {800, 600}; }
+  QSize minimumSizeHint() const override { return {200, 150}; }
+
+ signals:
+  void cursorMoved(double x_m, double y_m);  // world coordinates under the mouse
+  void viewChanged();
+  void followRobotChanged(bool follow);  // also emitted when a drag ends following
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void mouseDoubleClickEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+
+ private:
+  // A cached static layer: rendered for one scale, covering the viewport plus a margin.
+  struct LayerCache {
+    QPixmap under;  // floor, metric grid, raster
+    QPixmap over;   // walls, obstacles, features, ceiling, graph (transparent background)
+    QPixmap trail;  // the trail, opaque strokes on transparent, extended as points arrive
+    bool trail_valid = false;
+    std::uint64_t trail_upto = 0;        // trail points drawn (counted like trail_pushed_)
+    std::uint64_t trail_dropped_at = 0;  // trail_dropped() when the trail was last drawn whole
+    double scale = 0.0;
+    irgs::Vec2 origin = irgs::Vec2::Zero();  // world point at the pixmaps' top-left corner
+    QSize size;                              // logical pixels
+    bool valid = false;
+  };
+
+  QTransform worldTransform() const;  // world metres -> widget pixels
+  void rebuildMapGeometry();
+  void ensureCache();
+  void renderUnder(QPainter& p, const QTransform& world, const QRectF& world_rect) const;
+  void renderOver(QPainter& p, const QTransform& world, const QRectF& world_rect) const;
+  void renderMetricGrid(QPainter& p, const QTransform& world, const QRectF& world_rect) const;
+  void paintGrid(QPainter& p) const;
+  void updateTrailCache();
+  QTransform cacheTransform() const;  // world metres -> cache pixmap pixels
+  void paintSonar(QPainter& p) const;
+  void paintRobot(QPainter& p, const irgs::Pose2& pose, bool ghost) const;
+  void paintScaleBar(QPainter& p) const;
+  void invalidateCache();
+  void viewWasChanged();
+  void stopAutoFit();
+  void redrawWholeGrid();
+  void blitGridCells(irgs::OccupancyGrid::CellRect cells);
+  irgs::Box2 contentBounds() const;
+  double bodyRadius() const;
+
+  // Map and its prepared geometry (world coordinates).
+  irgs::WorldMap map_;
+  std::vector<QLineF> wall_segments_;  // world metres
+  std::vector<QPolygonF> obstacle_polygons_;
+  QPainterPath light_path_;
+  std::vector<QPolygonF> marker_polygons_;
+  QImage raster_image_;  // one pixel per raster cell, top row = largest y
+
+  irgs::RobotProfile profile_;
+  QPolygonF body_polygon_;  // body frame
+
+  // Occupancy grid, drawn from square tiles of kTileCells x kTileCells cells (one pixel per
+  // cell, top row = largest y) created where the grid was observed, so growth never copies.
+  static constexpr int kTileCells = 256;
+  static constexpr int kTileMipFactor = 4;  // the reduced tile used when cells are < 0.5 px
+  struct GridTile {
+    QImage full;
+    QImage reduced;  // full scaled down by kTileMipFactor, rebuilt lazily
+    bool reduced_stale = true;
+  };
+  const irgs::OccupancyGrid* grid_ = nullptr;
+  irgs::OccupancyGrid* mutable_grid_ = nullptr;
+  mutable std::unordered_map<std::int64_t, GridTile> tiles_;
+
+  // Robot state.
+  std::optional<irgs::Pose2> pose_;
+  std::optional<irgs::Pose2> true_pose_;
+  struct SonarState {
+    irgs::SonarReading reading;
+    double time_s = 0.0;  // sample time of the reading
+  };
+  std::vector<std::optional<SonarState>> sonar_;  // latest per sensor
+  double last_time_s_ = 0.0;
+  std::uint32_t bumpers_ = 0;
+  std::deque<irgs::Vec2> trail_;
+  std::uint64_t trail_pushed_ = 0;  // points ever appended; trail_ holds the last trail_.size()
+
+  // View.
+  double scale_ = 50.0;
+  irgs::Vec2 centre_ = irgs::Vec2::Zero();
+  bool follow_robot_ = false;
+  bool auto_fit_ = true;
+  unsigned layers_ = ~0u;  // bit per Layer
+  LayerCache cache_;
+
+  // Mouse drag.
+  bool dragging_ = false;
+  QPointF last_mouse_;
+};
+
+}  // namespace irgs::widgets
