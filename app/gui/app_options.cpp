@@ -1,0 +1,159 @@
+#include "app/gui/app_options.hpp"
+
+#include <QCommandLineParser>
+#include <QRegularExpression>
+#include <cmath>
+
+namespace irgs::gui {
+namespace {
+
+// Parses a finite, non-negative number of seconds or a speed factor.
+std::optional<double> parseNonNegative(const QString& text) {
+  bool ok = false;
+  const double value = text.toDouble(&ok);
+  if (!ok || !std::isfinite(value) || value < 0.0)
+    return std::nullopt;
+  return value;
+}
+
+std::optional<QSize> parseSize(const QString& text) {
+  static const QRegularExpression kPattern(QStringLiteral("^(\\d{2,5})x(\\d{2,5})$"));
+  const auto match = kPattern.match(text.trimmed());
+  if (!match.hasMatch())
+    return std::nullopt;
+  const int w = match.captured(1).toInt(), h = match.captured(2).toInt();
+  if (w < 320 || h < 240)
+    return std::nullopt;
+  return QSize(w, h);
+}
+
+}  // namespace
+
+AppOptionsResult parseAppOptions(const QStringList& arguments) {
+  QCommandLineParser parser;
+  parser.setApplicationDescription(
+      QStringLiteral("IRGS — Indoor Robot Ground Station: map display, simulator and teleop.\n"
+                     "Exit status: 0 ok, 1 a file could not be read or written, 2 bad arguments,\n"
+                     "3 --quit-after reached before the requested screenshot."));
+  const QCommandLineOption help_option({QStringLiteral("h"), QStringLiteral("help")},
+                                       QStringLiteral("Show this help and exit."));
+  const QCommandLineOption version_option(QStringLiteral("version"),
+                                          QStringLiteral("Show the version and exit."));
+  const QCommandLineOption map_option(
+      QStringLiteral("map"),
+      QStringLiteral("World map to open (IRGS JSON or ROS map YAML). Default: the last map, "
+                     "else the bundled default map."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption robot_option(
+      QStringLiteral("robot"),
+      QStringLiteral("Robot profile (JSON). Default: the bundled thesis robot."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption seed_option(QStringLiteral("seed"),
+                                       QStringLiteral("Simulator noise seed (default 1)."),
+                                       QStringLiteral("N"));
+  const QCommandLineOption settings_option(
+      QStringLiteral("settings"),
+      QStringLiteral("Use this INI file for settings instead of the user's (also "
+                     "$IRGS_SETTINGS_FILE)."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption script_option(
+      QStringLiteral("drive-script"),
+      QStringLiteral("Replay this drive script as teleop commands, by simulated time."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption screenshot_option(
+      QStringLiteral("screenshot"),
+      QStringLiteral("Save a PNG of the whole window and exit (see --screenshot-after)."),
+      QStringLiteral("PNG"));
+  const QCommandLineOption screenshot_after_option(
+      QStringLiteral("screenshot-after"),
+      QStringLiteral("Simulated seconds to run before the screenshot (default 5)."),
+      QStringLiteral("SIM_SECONDS"));
+  const QCommandLineOption quit_after_option(
+      QStringLiteral("quit-after"),
+      QStringLiteral("Quit after this many wall-clock seconds (exit 3 if a screenshot was "
+                     "requested and not yet taken)."),
+      QStringLiteral("S"));
+  const QCommandLineOption window_size_option(
+      QStringLiteral("window-size"),
+      QStringLiteral("Initial window size, e.g. 1400x900 (overrides the saved geometry)."),
+      QStringLiteral("WxH"));
+  const QCommandLineOption speed_option(
+      QStringLiteral("speed"),
+      QStringLiteral("Initial simulation speed factor: 1, 2, 10 or 0 (= max)."),
+      QStringLiteral("FACTOR"));
+  parser.addOptions({help_option, version_option, map_option, robot_option, seed_option,
+                     settings_option, script_option, screenshot_option, screenshot_after_option,
+                     quit_after_option, window_size_option, speed_option});
+
+  AppOptionsResult result;
+  const auto fail = [&result](const QString& message) {
+    result.options.reset();
+    result.message = message + QStringLiteral("\nTry 'irgs --help'.");
+    result.exit_code = 2;
+    return result;
+  };
+  if (!parser.parse(arguments))
+    return fail(parser.errorText());
+  if (parser.isSet(help_option)) {
+    // Without a QCoreApplication the parser cannot know the program name.
+    result.message =
+        parser.helpText().replace(QStringLiteral("<executable_name>"), QStringLiteral("irgs"));
+    return result;
+  }
+  if (parser.isSet(version_option)) {
+    result.message = QStringLiteral("irgs %1").arg(QStringLiteral(IRGS_VERSION));
+    return result;
+  }
+  if (!parser.positionalArguments().isEmpty())
+    return fail(QStringLiteral("unexpected argument '%1' (did you mean --map %1?)")
+                    .arg(parser.positionalArguments().first()));
+
+  AppOptions options;
+  options.map_file = parser.value(map_option);
+  options.robot_file = parser.value(robot_option);
+  options.settings_file = parser.value(settings_option);
+  options.drive_script_file = parser.value(script_option);
+  options.screenshot_file = parser.value(screenshot_option);
+  for (const auto* option :
+       {&map_option, &robot_option, &settings_option, &script_option, &screenshot_option}) {
+    if (parser.isSet(*option) && parser.value(*option).trimmed().isEmpty())
+      return fail(QStringLiteral("--%1 needs a file name").arg(option->names().constLast()));
+  }
+  if (parser.isSet(seed_option)) {
+    bool ok = false;
+    options.seed = parser.value(seed_option).toULongLong(&ok);
+    if (!ok)
+      return fail(QStringLiteral("--seed expects a non-negative integer, got '%1'")
+                      .arg(parser.value(seed_option)));
+  }
+  if (parser.isSet(screenshot_after_option)) {
+    const auto value = parseNonNegative(parser.value(screenshot_after_option));
+    if (!value)
+      return fail(QStringLiteral("--screenshot-after expects seconds >= 0, got '%1'")
+                      .arg(parser.value(screenshot_after_option)));
+    options.screenshot_after_s = *value;
+  }
+  if (parser.isSet(quit_after_option)) {
+    options.quit_after_s = parseNonNegative(parser.value(quit_after_option));
+    if (!options.quit_after_s)
+      return fail(QStringLiteral("--quit-after expects seconds >= 0, got '%1'")
+                      .arg(parser.value(quit_after_option)));
+  }
+  if (parser.isSet(window_size_option)) {
+    options.window_size = parseSize(parser.value(window_size_option));
+    if (!options.window_size)
+      return fail(QStringLiteral("--window-size expects WIDTHxHEIGHT of at least 320x240, got "
+                                 "'%1'")
+                      .arg(parser.value(window_size_option)));
+  }
+  if (parser.isSet(speed_option)) {
+    options.sim_speed = parseNonNegative(parser.value(speed_option));
+    if (!options.sim_speed || *options.sim_speed > 1000.0)
+      return fail(QStringLiteral("--speed expects a factor in [0, 1000] (0 = max), got '%1'")
+                      .arg(parser.value(speed_option)));
+  }
+  result.options = options;
+  return result;
+}
+
+}  // namespace irgs::gui

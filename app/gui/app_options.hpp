@@ -1,0 +1,35 @@
+#pragma once
+// The irgs command line, parsed into plain values. Parsing is separate from main() so it can be
+// tested and so every bad argument produces one clear message instead of a half-started window.
+
+#include <QSize>
+#include <QString>
+#include <QStringList>
+#include <cstdint>
+#include <optional>
+
+namespace irgs::gui {
+
+struct AppOptions {
+  QString map_file;                 // empty: last map from the settings, else the bundled default
+  QString robot_file;               // empty: the bundled thesis robot
+  std::uint64_t seed = 1;           // simulator noise seed
+  QString settings_file;            // empty: the user's normal settings (or $IRGS_SETTINGS_FILE)
+  QString drive_script_file;        // drive commands replayed by simulated time
+  QString screenshot_file;          // grab the window into this PNG, then exit 0
+  double screenshot_after_s = 5.0;  // simulated seconds before the screenshot
+  std::optional<double> quit_after_s;  // wall-clock seconds; a guard for demos and tests
+  std::optional<QSize> window_size;    // overrides the saved geometry (screenshots)
+  std::optional<double> sim_speed;     // initial speed factor, 0 = max
+};
+
+struct AppOptionsResult {
+  std::optional<AppOptions> options;  // empty when parsing failed or help/version was asked
+  QString message;                    // error text (exit 2) or help/version text (exit 0)
+  int exit_code = 0;
+};
+
+// Parses the full argument list (arguments[0] is the program name).
+AppOptionsResult parseAppOptions(const QStringList& arguments);
+
+}  // namespace irgs::gui

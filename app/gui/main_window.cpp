@@ -1,0 +1,385 @@
+#include "app/gui/main_window.hpp"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QSettings>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTimer>
+#include <array>
+
+#include "app/gui/app_settings.hpp"
+#include "app/gui/map_file_actions.hpp"
+#include "app/gui/session_controller.hpp"
+#include "app/gui/session_status_bar.hpp"
+#include "app/gui/shortcuts.hpp"
+#include "widgets/canvas/map_canvas.hpp"
+#include "widgets/command/command_panel.hpp"
+#include "widgets/console/console_widget.hpp"
+#include "widgets/teleop/keyboard_teleop.hpp"
+
+namespace irgs::gui {
+namespace {
+
+using widgets::MapCanvas;
+
+struct LayerInfo {
+  MapCanvas::Layer layer;
+  const char* key;    // settings key under view/layers
+  const char* label;  // menu text
+};
+
+constexpr std::array<LayerInfo, 9> kLayers{{
+    {MapCanvas::Layer::kGrid, "grid", "Occupancy &Grid (Sonar Map)"},
+    {MapCanvas::Layer::kRaster, "raster", "&Raster Map"},
+    {MapCanvas::Layer::kWalls, "walls", "&Walls and Obstacles"},
+    {MapCanvas::Layer::kFeatures, "features", "Corners and &Edges"},
+    {MapCanvas::Layer::kCeiling, "ceiling", "&Ceiling Markers and Lights"},
+    {MapCanvas::Layer::kGraph, "graph", "&Topological Graph"},
+    {MapCanvas::Layer::kSonar, "sonar", "&Sonar Cones"},
+    {MapCanvas::Layer::kTrail, "trail", "Tr&ail"},
+    {MapCanvas::Layer::kTruth, "truth", "True &Pose (Simulator)"},
+}};
+
+struct SpeedChoice {
+  double factor;
+  const char* label;
+  const QKeySequence* keys;
+};
+
+const std::array<SpeedChoice, 4> kSpeeds{{
+    {1.0, "Speed &1×", &shortcuts::kSpeed1},
+    {2.0, "Speed &2×", &shortcuts::kSpeed2},
+    {10.0, "Speed 1&0×", &shortcuts::kSpeed10},
+    {0.0, "Speed &Max", &shortcuts::kSpeedMax},
+}};
+
+widgets::ConsoleLevel toConsoleLevel(EventLevel level) {
+  switch (level) {
+    case EventLevel::kInfo:
+      return widgets::ConsoleLevel::kInfo;
+    case EventLevel::kWarning:
+      return widgets::ConsoleLevel::kWarning;
+    case EventLevel::kError:
+      return widgets::ConsoleLevel::kError;
+    case EventLevel::kSensor:
+      return widgets::ConsoleLevel::kSensor;
+  }
+  return widgets::ConsoleLevel::kInfo;
+}
+
+QString settingsKey(const char* key) {
+  return QString::fromLatin1(key);
+}
+
+}  // namespace
+
+MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget* parent)
+    : QMainWindow(parent), session_(session), settings_(settings) {
+  buildLayout();
+  map_files_ = new MapFileActions(session_, settings_, *this);
+  buildFileMenu();
+  buildViewMenu();
+  buildSimulationMenu();
+  buildHelpMenu();
+  status_ = new SessionStatusBar(*statusBar(), this);
+  connectSession();
+
+  teleop_ = new widgets::KeyboardTeleop(this);
+  teleop_->setSpeeds(panel_->linearSpeed(), panel_->angularSpeed());
+  qApp->installEventFilter(teleop_);
+  connect(teleop_, &widgets::KeyboardTeleop::commandChanged, &session_, &SessionController::drive);
+  connect(teleop_, &widgets::KeyboardTeleop::stopPressed, &session_, &SessionController::stopRobot);
+
+  status_timer_ = new QTimer(this);
+  status_timer_->setInterval(250);
+  connect(status_timer_, &QTimer::timeout, this, [this] { status_->refresh(session_); });
+  status_timer_->start();
+
+  if (session_.robot() != nullptr)
+    onWorldLoaded();
+  updateSimulationActions();
+  status_->refresh(session_);
+}
+
+MainWindow::~MainWindow() {
+  qApp->removeEventFilter(teleop_);
+}
+
+void MainWindow::buildLayout() {
+  canvas_ = new MapCanvas(this);
+  canvas_->setRobotProfile(session_.profile());
+  canvas_->setGrid(&session_.grid());
+  panel_ = new widgets::CommandPanel(this);
+  panel_->setMode(widgets::RobotMode::kSimulator);
+  panel_->setLinkedModeAvailable(
+      false, tr("Linked robots need the robot link (comms), which this build does not wire in "
+                "yet."));
+  console_ = new widgets::ConsoleWidget(this);
+
+  side_splitter_ = new QSplitter(Qt::Vertical, this);
+  side_splitter_->setObjectName(QStringLiteral("sideSplitter"));
+  side_splitter_->addWidget(panel_);
+  side_splitter_->addWidget(console_);
+  side_splitter_->setStretchFactor(0, 0);
+  side_splitter_->setStretchFactor(1, 1);
+  side_splitter_->setChildrenCollapsible(false);
+
+  main_splitter_ = new QSplitter(Qt::Horizontal, this);
+  main_splitter_->setObjectName(QStringLiteral("mainSplitter"));
+  main_splitter_->addWidget(canvas_);
+  main_splitter_->addWidget(side_splitter_);
+  main_splitter_->setStretchFactor(0, 1);
+  main_splitter_->setStretchFactor(1, 0);
+  main_splitter_->setChildrenCollapsible(false);
+  setCentralWidget(main_splitter_);
+}
+
+void MainWindow::buildFileMenu() {
+  QMenu* menu = menuBar()->addMenu(tr("&File"));
+  menu->addAction(map_files_->openAction());
+  menu->addMenu(map_files_->recentMenu());
+  menu->addSeparator();
+  menu->addAction(map_files_->saveAction());
+  menu->addAction(map_files_->saveAsAction());
+  menu->addSeparator();
+  QAction* quit = menu->addAction(tr("&Quit"), this, &QWidget::close);
+  quit->setShortcut(QKeySequence::Quit);
+  quit->setMenuRole(QAction::QuitRole);
+  connect(map_files_, &MapFileActions::currentFileChanged, this, &MainWindow::updateTitle);
+}
+
+void MainWindow::buildViewMenu() {
+  QMenu* menu = menuBar()->addMenu(tr("&View"));
+  QAction* fit = menu->addAction(tr("&Zoom to Fit"), canvas_, &MapCanvas::zoomToFit);
+  fit->setShortcut(shortcuts::kZoomToFit);
+
+  follow_action_ = menu->addAction(tr("&Follow Robot"));
+  follow_action_->setCheckable(true);
+  follow_action_->setShortcut(shortcuts::kFollowRobot);
+  connect(follow_action_, &QAction::toggled, canvas_, &MapCanvas::setFollowRobot);
+  connect(canvas_, &MapCanvas::followRobotChanged, follow_action_, &QAction::setChecked);
+
+  QMenu* layers = menu->addMenu(tr("&Layers"));
+  for (const LayerInfo& info : kLayers) {
+    QAction* action = layers->addAction(tr(info.label));
+    action->setCheckable(true);
+    action->setChecked(true);
+    const MapCanvas::Layer layer = info.layer;
+    connect(action, &QAction::toggled, canvas_,
+            [this, layer](bool visible) { canvas_->setLayerVisible(layer, visible); });
+    layer_actions_.push_back(action);
+  }
+
+  menu->addSeparator();
+  QAction* clear_trail = menu->addAction(tr("Clear &Trail"), canvas_, &MapCanvas::clearTrail);
+  clear_trail->setShortcut(shortcuts::kClearTrail);
+  QAction* reset_grid = menu->addAction(tr("Reset &Grid"), this, [this] {
+    session_.resetGrid();
+    session_.report(EventLevel::kInfo, tr("Occupancy grid cleared"));
+  });
+  reset_grid->setShortcut(shortcuts::kResetGrid);
+}
+
+void MainWindow::buildSimulationMenu() {
+  QMenu* menu = menuBar()->addMenu(tr("&Simulation"));
+  run_pause_action_ = menu->addAction(tr("&Pause"));
+  run_pause_action_->setShortcut(shortcuts::kRunPause);
+  connect(run_pause_action_, &QAction::triggered, this,
+          [this] { session_.setPaused(!session_.paused()); });
+  step_action_ = menu->addAction(tr("&Step"), &session_, &SessionController::singleStep);
+  step_action_->setShortcut(shortcuts::kStep);
+
+  menu->addSeparator();
+  speed_group_ = new QActionGroup(this);
+  for (const SpeedChoice& choice : kSpeeds) {
+    QAction* action = menu->addAction(tr(choice.label));
+    action->setCheckable(true);
+    action->setShortcut(*choice.keys);
+    action->setData(choice.factor);
+    speed_group_->addAction(action);
+    const double factor = choice.factor;
+    connect(action, &QAction::triggered, &session_,
+            [this, factor] { session_.setSpeedFactor(factor); });
+  }
+
+  menu->addSeparator();
+  reset_robot_action_ = menu->addAction(tr("&Reset Robot to Start Pose"), &session_,
+                                        &SessionController::resetRobotToStart);
+  reset_robot_action_->setShortcut(shortcuts::kResetRobot);
+}
+
+void MainWindow::buildHelpMenu() {
+  QMenu* menu = menuBar()->addMenu(tr("&Help"));
+  QAction* keys = menu->addAction(tr("&Keyboard Shortcuts"), this, &MainWindow::showShortcuts);
+  keys->setShortcut(shortcuts::kHelp);
+  QAction* about = menu->addAction(tr("&About IRGS"), this, &MainWindow::showAbout);
+  about->setMenuRole(QAction::AboutRole);
+}
+
+void MainWindow::connectSession() {
+  connect(&session_, &SessionController::consoleEvent, console_,
+          [this](EventLevel level, double time_s, const QString& text) {
+            console_->appendEvent(toConsoleLevel(level), time_s, text);
+          });
+  connect(&session_, &SessionController::worldLoaded, this, &MainWindow::onWorldLoaded);
+  connect(&session_, &SessionController::robotReplaced, canvas_, &MapCanvas::clearTrail);
+  connect(&session_, &SessionController::robotStateChanged, canvas_, &MapCanvas::setRobotState);
+  connect(&session_, &SessionController::gridChanged, canvas_,
+          [this](const OccupancyGrid::CellRect& dirty) { canvas_->gridUpdated(dirty); });
+  connect(&session_, &SessionController::gridReset, canvas_,
+          [this] { canvas_->setGrid(&session_.grid()); });
+  connect(&session_, &SessionController::pausedChanged, this, &MainWindow::updateSimulationActions);
+  connect(&session_, &SessionController::speedFactorChanged, this,
+          &MainWindow::updateSimulationActions);
+
+  connect(panel_, &widgets::CommandPanel::driveRequested, &session_, &SessionController::drive);
+  connect(panel_, &widgets::CommandPanel::stopRequested, &session_, &SessionController::stopRobot);
+  connect(panel_, &widgets::CommandPanel::pausedChanged, &session_, &SessionController::setPaused);
+  connect(panel_, &widgets::CommandPanel::stepRequested, &session_, &SessionController::singleStep);
+  connect(panel_, &widgets::CommandPanel::simSpeedChanged, &session_,
+          &SessionController::setSpeedFactor);
+  connect(panel_, &widgets::CommandPanel::driveSpeedsChanged, this,
+          [this](double linear_mps, double angular_radps) {
+            teleop_->setSpeeds(linear_mps, angular_radps);
+          });
+  connect(panel_, &widgets::CommandPanel::modeRequested, this, [this](widgets::RobotMode mode) {
+    if (mode == widgets::RobotMode::kLinkedRobot) {
+      session_.report(EventLevel::kWarning,
+                      tr("Linked-robot mode is not available in this build; staying in the "
+                         "simulator"));
+      panel_->setMode(widgets::RobotMode::kSimulator);
+    }
+  });
+
+  connect(canvas_, &MapCanvas::cursorMoved, status_, &SessionStatusBar::setCursor);
+  connect(&session_, &SessionController::ticked, status_,
+          [this] { status_->refreshTime(session_); });
+}
+
+void MainWindow::onWorldLoaded() {
+  canvas_->setWorldMap(session_.worldMap());
+  canvas_->setGrid(&session_.grid());
+  canvas_->clearTrail();
+  if (session_.latestSample())
+    canvas_->setRobotState(*session_.latestSample());
+  canvas_->zoomToFit();
+  updateTitle();
+  updateSimulationActions();
+}
+
+void MainWindow::updateTitle() {
+  const QString name = QString::fromStdString(session_.worldMap().name);
+  const QString file =
+      map_files_->currentFile().isEmpty() ? session_.worldSource() : map_files_->currentFile();
+  QString title = QStringLiteral("IRGS");
+  if (!name.isEmpty() || !file.isEmpty()) {
+    title += QStringLiteral(" — ") + (name.isEmpty() ? tr("untitled map") : name);
+    if (!file.isEmpty())
+      title += QStringLiteral(" (%1)").arg(QFileInfo(file).fileName());
+  }
+  setWindowTitle(title);
+  setWindowFilePath(file);
+}
+
+void MainWindow::updateSimulationActions() {
+  const bool simulated = session_.simulationControl() != nullptr;
+  const bool paused = session_.paused();
+  run_pause_action_->setEnabled(simulated);
+  run_pause_action_->setText(paused ? tr("&Run") : tr("&Pause"));
+  step_action_->setEnabled(simulated);
+  reset_robot_action_->setEnabled(simulated);
+  speed_group_->setEnabled(simulated);
+  for (QAction* action : speed_group_->actions())
+    action->setChecked(action->data().toDouble() == session_.speedFactor());
+  panel_->setSimulationControlsEnabled(simulated);
+  panel_->setPaused(paused);
+  panel_->setSimSpeed(session_.speedFactor());
+  status_->refresh(session_);
+}
+
+void MainWindow::showShortcuts() {
+  QString html = QStringLiteral("<table cellspacing='0' cellpadding='3'>");
+  for (const shortcuts::Entry& entry : shortcuts::table()) {
+    html += QStringLiteral("<tr><td><b>%1</b></td><td>%2</td></tr>")
+                .arg(entry.keys.toHtmlEscaped(), entry.action.toHtmlEscaped());
+  }
+  html += QStringLiteral(
+      "</table><p>Driving keys work whenever no text field has focus; "
+      "speeds come from the command panel.</p>");
+  QMessageBox box(QMessageBox::NoIcon, tr("Keyboard Shortcuts"), html, QMessageBox::Close, this);
+  box.setTextFormat(Qt::RichText);
+  box.exec();
+}
+
+void MainWindow::showAbout() {
+  QMessageBox::about(
+      this, tr("About IRGS"),
+      tr("<b>IRGS %1</b> — Indoor Robot Ground Station<p>Map display, sonar occupancy mapping, "
+         "simulator and teleoperation for small indoor robots.</p><p>Robot: %2</p>")
+          .arg(QStringLiteral(IRGS_VERSION),
+               session_.robot() != nullptr
+                   ? QString::fromStdString(session_.robot()->describe()).toHtmlEscaped()
+                   : tr("none")));
+}
+
+void MainWindow::restoreSettings(const QSize& default_size) {
+  if (!restoreGeometry(settings_.value(settingsKey(settings_key::kWindowGeometry)).toByteArray()))
+    resize(default_size);
+  restoreState(settings_.value(settingsKey(settings_key::kWindowState)).toByteArray());
+  if (!main_splitter_->restoreState(
+          settings_.value(settingsKey(settings_key::kMainSplitter)).toByteArray())) {
+    main_splitter_->setSizes({std::max(400, width() - kSideColumnWidth), kSideColumnWidth});
+  }
+  if (!side_splitter_->restoreState(
+          settings_.value(settingsKey(settings_key::kSideSplitter)).toByteArray())) {
+    const int panel_height = panel_->sizeHint().height();
+    side_splitter_->setSizes({panel_height, std::max(200, height() - panel_height)});
+  }
+  const double linear =
+      settings_.value(settingsKey(settings_key::kLinearSpeed), panel_->linearSpeed()).toDouble();
+  const double angular =
+      settings_.value(settingsKey(settings_key::kAngularSpeed), panel_->angularSpeed()).toDouble();
+  panel_->setDriveSpeeds(linear, angular);
+  teleop_->setSpeeds(panel_->linearSpeed(), panel_->angularSpeed());
+  follow_action_->setChecked(
+      settings_.value(settingsKey(settings_key::kFollowRobot), false).toBool());
+  settings_.beginGroup(settingsKey(settings_key::kLayerGroup));
+  for (std::size_t i = 0; i < kLayers.size(); ++i)
+    layer_actions_[i]->setChecked(
+        settings_.value(QString::fromLatin1(kLayers[i].key), true).toBool());
+  settings_.endGroup();
+}
+
+void MainWindow::saveSettings() {
+  settings_.setValue(settingsKey(settings_key::kWindowGeometry), saveGeometry());
+  settings_.setValue(settingsKey(settings_key::kWindowState), saveState());
+  settings_.setValue(settingsKey(settings_key::kMainSplitter), main_splitter_->saveState());
+  settings_.setValue(settingsKey(settings_key::kSideSplitter), side_splitter_->saveState());
+  settings_.setValue(settingsKey(settings_key::kLinearSpeed), panel_->linearSpeed());
+  settings_.setValue(settingsKey(settings_key::kAngularSpeed), panel_->angularSpeed());
+  settings_.setValue(settingsKey(settings_key::kFollowRobot), follow_action_->isChecked());
+  settings_.beginGroup(settingsKey(settings_key::kLayerGroup));
+  for (std::size_t i = 0; i < kLayers.size(); ++i)
+    settings_.setValue(QString::fromLatin1(kLayers[i].key), layer_actions_[i]->isChecked());
+  settings_.endGroup();
+  settings_.sync();
+}
+
+void MainWindow::refreshStatus() {
+  status_->refresh(session_);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  session_.stopRobot();
+  saveSettings();
+  event->accept();
+}
+
+}  // namespace irgs::gui

@@ -1,0 +1,87 @@
+#pragma once
+// The ground-station window, laid out like the thesis host UI (003_…, Fig. 3.12): the map on the
+// left, command buttons top right, the console bottom right. It lays out and connects; the work
+// happens in SessionController, MapFileActions and the widgets.
+
+#include <QMainWindow>
+
+class QAction;
+class QActionGroup;
+class QSettings;
+class QSplitter;
+class QTimer;
+
+namespace irgs::widgets {
+class CommandPanel;
+class ConsoleWidget;
+class KeyboardTeleop;
+class MapCanvas;
+}  // namespace irgs::widgets
+
+namespace irgs::gui {
+
+class MapFileActions;
+class SessionController;
+class SessionStatusBar;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  static constexpr int kSideColumnWidth = 360;  // px, command panel and console
+
+  // `session` and `settings` must outlive the window. Installs the keyboard teleop as an
+  // application event filter (removed again in the destructor).
+  MainWindow(SessionController& session, QSettings& settings, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  widgets::MapCanvas& canvas() const { return *canvas_; }
+  widgets::CommandPanel& commandPanel() const { return *panel_; }
+  widgets::ConsoleWidget& console() const { return *console_; }
+  widgets::KeyboardTeleop& teleop() const { return *teleop_; }
+  MapFileActions& mapFiles() const { return *map_files_; }
+
+  // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
+  // the window gets `default_size`.
+  void restoreSettings(const QSize& default_size);
+  void saveSettings();
+  // Brings the status bar up to date now (it normally refreshes a few times per second).
+  void refreshStatus();
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  void buildLayout();
+  void buildFileMenu();
+  void buildViewMenu();
+  void buildSimulationMenu();
+  void buildHelpMenu();
+  void connectSession();
+  void onWorldLoaded();
+  void updateTitle();
+  void updateSimulationActions();
+  void showShortcuts();
+  void showAbout();
+
+  SessionController& session_;
+  QSettings& settings_;
+  widgets::MapCanvas* canvas_ = nullptr;
+  widgets::CommandPanel* panel_ = nullptr;
+  widgets::ConsoleWidget* console_ = nullptr;
+  widgets::KeyboardTeleop* teleop_ = nullptr;
+  QSplitter* main_splitter_ = nullptr;
+  QSplitter* side_splitter_ = nullptr;
+  MapFileActions* map_files_ = nullptr;
+  SessionStatusBar* status_ = nullptr;
+  QTimer* status_timer_ = nullptr;
+
+  QAction* follow_action_ = nullptr;
+  std::vector<QAction*> layer_actions_;
+  QAction* run_pause_action_ = nullptr;
+  QAction* step_action_ = nullptr;
+  QAction* reset_robot_action_ = nullptr;
+  QActionGroup* speed_group_ = nullptr;
+};
+
+}  // namespace irgs::gui
