@@ -23,6 +23,7 @@
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/session_controller.hpp"
 #include "app/gui/startup.hpp"
+#include "core/sim/sim_presets.hpp"
 #include "core/sim/simulated_robot.hpp"
 
 namespace {
@@ -51,7 +52,8 @@ void printLines(const QStringList& lines) {
 RobotFactory simulatedRobotFactory(std::uint64_t seed) {
   return [seed](const irgs::WorldMap& world,
                 const irgs::RobotProfile& profile) -> std::unique_ptr<irgs::Robot> {
-    irgs::SimConfig config;
+    // The same typical odometry errors as irgs-sim: a real robot's map smears, so does ours.
+    irgs::SimConfig config = irgs::typicalSimConfig();
     config.seed = seed;
     auto robot = std::make_unique<irgs::SimulatedRobot>(world, profile, config);
     // At speed "max" the session calls update() repeatedly within its tick budget; small

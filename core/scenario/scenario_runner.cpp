@@ -8,23 +8,6 @@
 
 namespace irgs {
 
-SimConfig typicalSimConfig(SimConfig base) {
-  base.odometry.left_scale = 1.0005;
-  base.odometry.right_scale = 0.9995;
-  base.odometry.wheelbase_scale = 1.005;
-  base.odometry.slip_stddev = 0.001;
-  return base;
-}
-
-SimConfig idealSimConfig(SimConfig base) {
-  base.odometry = OdometryErrorModel{};
-  base.sonar.range_stddev_m = 0.0;
-  base.sonar.range_stddev_per_m = 0.0;
-  base.sonar.dropout_probability = 0.0;
-  base.proximity_stddev_m = 0.0;
-  return base;
-}
-
 ScenarioResult runScenario(const ScenarioSpec& spec) {
   WorldMap map = spec.map;
   const Pose2 start = spec.start.value_or(map.start);

@@ -10,6 +10,7 @@
 #include "core/mapping/occupancy_grid.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/sim/drive_script.hpp"
+#include "core/sim/sim_presets.hpp"
 #include "core/sim/simulator.hpp"
 #include "core/world/world_map.hpp"
 
@@ -57,16 +58,5 @@ struct ScenarioResult {
 };
 
 ScenarioResult runScenario(const ScenarioSpec& spec);
-
-// `base` with the odometry errors of a typical small hand-built robot: wheels differing by
-// +-0.05 %, effective wheelbase 0.5 % wider than nominal (tyre contact), 0.1 % random slip per
-// step.
-// irgs-sim and the GUI simulate with these unless told to run ideal; sensor noise keeps the
-// simulator's defaults.
-SimConfig typicalSimConfig(SimConfig base = {});
-
-// `base` with every error source switched off: exact odometry, noise-free sonar without dropouts.
-// The paper-003 simulator ran this way ("the simulation excludes sensor and actuator errors").
-SimConfig idealSimConfig(SimConfig base);
 
 }  // namespace irgs
