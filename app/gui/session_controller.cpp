@@ -19,6 +19,9 @@ constexpr double kBlockedDelay_s = 0.5;
 // Intermediate robot states sent to the view per tick: at least this far apart, at most so many.
 constexpr double kTrailSpacing_m = 0.02;
 constexpr int kMaxIntermediateStatesPerTick = 500;
+// Simulated steps per robot update when a scheduled command change is near at speed "max"
+// (the same 20 steps main.cpp gives SimulatedRobot per max-speed update).
+constexpr double kMaxSpeedChunkSteps = 20.0;
 
 }  // namespace
 
@@ -122,7 +125,15 @@ void SessionController::tick(double wall_elapsed_s) {
   advanceRobot(std::clamp(wall_elapsed_s, 0.0, kMaxTickElapsed_s), tick_clock);
   if (integratePending(tick_clock) > 0) {
     emit gridChanged(grid_.takeDirtyRect());
-    emit robotStateChanged(*latest_);
+    // The view shows every sonar's latest reading: at high speed one tick integrates many
+    // samples, and the newest alone holds only the sonars that fired in its step.
+    TelemetrySample shown = *latest_;
+    shown.sonar.clear();
+    for (const auto& reading : last_sonar_) {
+      if (reading)
+        shown.sonar.push_back(*reading);
+    }
+    emit robotStateChanged(shown);
   }
   maybeEmitSensorLine();
   emit ticked();
@@ -169,7 +180,20 @@ void SessionController::advanceRobot(double wall_s, const QElapsedTimer& tick_cl
       const double until_change_s = std::max(next_change_s - robot_time_s_, step_s_);
       slice_s = std::min(slice_s, until_change_s / factor);
     }
-    std::vector<TelemetrySample> samples = robot_->update(slice_s);
+    std::vector<TelemetrySample> samples;
+    if (max_speed && std::isfinite(next_change_s)) {
+      // A scheduled change at "max" speed: run the stretch before it at x1 for exactly its
+      // length (in chunks no longer than a max-speed update), so a script replays on the same
+      // steps at every speed, as it does headless.
+      const double until_change_s = std::max(next_change_s - robot_time_s_, step_s_);
+      sim->setSpeedFactor(1.0);
+      // Half a step extra: the robot floors elapsed/step, and 1.5 s / 0.01 s may be 149.99999.
+      const double chunk_s = std::min(until_change_s, kMaxSpeedChunkSteps * step_s_);
+      samples = robot_->update(chunk_s + 0.5 * step_s_);
+      sim->setSpeedFactor(0.0);
+    } else {
+      samples = robot_->update(slice_s);
+    }
     remaining_s -= slice_s;
     for (TelemetrySample& sample : samples) {
       sample.time_s += time_offset_s_;

@@ -34,7 +34,7 @@ const QColor kGraphLabel(13, 71, 161);
 const QColor kRobotFill(30, 136, 229, 215);
 const QColor kRobotOutline(13, 71, 161);
 const QColor kTruthColour(46, 160, 67);
-const QColor kTrailColour(21, 101, 192, 150);
+const QColor kTrailColour(142, 36, 170, 150);  // purple: apart from the graph blue
 const QColor kEchoFill(255, 152, 0, 50);
 const QColor kEchoOutline(230, 120, 0, 150);
 const QColor kEchoArc(216, 67, 21, 230);

@@ -107,10 +107,15 @@ ConsoleWidget::ConsoleWidget(QWidget* parent) : QWidget(parent) {
   filter_edit_->setToolTip(tr("Show only lines containing this text (case-insensitive)"));
   connect(filter_edit_, &QLineEdit::textChanged, this, &ConsoleWidget::setFilterText);
 
+  // Two rows: filter and actions, then the level switches; one row squeezed the filter to
+  // nothing in a side column of ordinary width.
   auto* bar = new QHBoxLayout;
   bar->setContentsMargins(0, 0, 0, 0);
   bar->setSpacing(6);
   bar->addWidget(filter_edit_, 1);
+  auto* levels = new QHBoxLayout;
+  levels->setContentsMargins(0, 0, 0, 0);
+  levels->setSpacing(10);
   const std::array<QString, 4> names{tr("Info"), tr("Warnings"), tr("Errors"), tr("Sensors")};
   const std::array<QString, 4> ids{
       QStringLiteral("consoleLevelInfo"), QStringLiteral("consoleLevelWarning"),
@@ -123,8 +128,9 @@ ConsoleWidget::ConsoleWidget(QWidget* parent) : QWidget(parent) {
     const auto level = static_cast<ConsoleLevel>(i);
     connect(box, &QCheckBox::toggled, this, [this, level](bool on) { setLevelVisible(level, on); });
     level_boxes_[i] = box;
-    bar->addWidget(box);
+    levels->addWidget(box);
   }
+  levels->addStretch(1);
 
   auto* copy = new QToolButton(this);
   copy->setObjectName(QStringLiteral("consoleCopy"));
@@ -151,6 +157,7 @@ ConsoleWidget::ConsoleWidget(QWidget* parent) : QWidget(parent) {
   layout->setContentsMargins(0, 0, 0, 0);
   layout->setSpacing(4);
   layout->addLayout(bar);
+  layout->addLayout(levels);
   layout->addWidget(view_, 1);
 
   // Lines arrive in bursts (a telemetry sample may log several); they reach the view at most
