@@ -11,7 +11,7 @@
 //   build-b/bench/sim/irgs_bench_sim --benchmark_repetitions=5
 //
 // The "x_realtime" counter is simulated seconds per wall second; the program ends by printing
-// the ratio of the medians (indexed / naive). Results: docs/performance-sim.md.
+// the ratio of the medians (indexed / naive). Results: docs/performance.md.
 
 #include <benchmark/benchmark.h>
 
