@@ -300,6 +300,16 @@ void readPosition(Reader& r, const Json& o, const std::string& ptr, Vec2& positi
   position = {x, y};
 }
 
+// A sensor mount: x_m, y_m and heading_deg in the body frame.
+Pose2 readMount(Reader& r, const Json& o, const std::string& ptr) {
+  Vec2 p = Vec2::Zero();
+  readPosition(r, o, ptr, p);
+  double heading = 0.0;
+  r.read(
+      o, ptr, "heading_deg", heading, true, [](double) { return true; }, "a number");
+  return {p.x(), p.y(), wrapAngle(degToRad(heading))};
+}
+
 std::string nameOr(Reader& r, const Json& o, const std::string& ptr, const std::string& fallback) {
   return r.string(o, ptr, "name", false).value_or(fallback);
 }
@@ -308,14 +318,7 @@ void readSonars(Reader& r, const Json& root, RobotProfile& profile) {
   forEachItem(r, root, "sonars", [&](const Json& o, const std::string& ptr, std::size_t i) {
     SonarSpec s;
     s.name = nameOr(r, o, ptr, "sonar_" + std::to_string(i));
-    Vec2 p = Vec2::Zero();
-    readPosition(r, o, ptr, p);
-    s.mount.x = p.x();
-    s.mount.y = p.y();
-    double heading = 0.0;
-    r.read(
-        o, ptr, "heading_deg", heading, true, [](double) { return true; }, "a number");
-    s.mount.theta = wrapAngle(degToRad(heading));
+    s.mount = readMount(r, o, ptr);
     r.read(
         o, ptr, "beam_width_deg", s.beam_width_rad, false,
         [](double v) { return v > 0.0 && v <= 180.0; }, "(0, 180] degrees", degToRad(1.0));
@@ -355,14 +358,7 @@ void readProximity(Reader& r, const Json& root, RobotProfile& profile) {
   forEachItem(r, root, "proximity", [&](const Json& o, const std::string& ptr, std::size_t i) {
     ProximitySpec s;
     s.name = nameOr(r, o, ptr, "proximity_" + std::to_string(i));
-    Vec2 p = Vec2::Zero();
-    readPosition(r, o, ptr, p);
-    s.mount.x = p.x();
-    s.mount.y = p.y();
-    double heading = 0.0;
-    r.read(
-        o, ptr, "heading_deg", heading, true, [](double) { return true; }, "a number");
-    s.mount.theta = wrapAngle(degToRad(heading));
+    s.mount = readMount(r, o, ptr);
     r.read(o, ptr, "max_range_m", s.max_range_m, false, positive, "> 0");
     r.read(o, ptr, "rate_hz", s.rate_hz, false, positive, "> 0");
     r.keepUnknown(o, ptr, {"name", "x_m", "y_m", "heading_deg", "max_range_m", "rate_hz"}, s.extra);
