@@ -39,12 +39,13 @@ if ((${#missing[@]})); then
     "${missing[@]}"
 fi
 
-werror=OFF
-if [ "${CI:-}" = "true" ] || [ "${CI:-}" = "1" ]; then werror=ON; fi
+# Warnings are errors under CI only; locally the cached choice stands (switching it would
+# rebuild everything).
+cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+if [ "${CI:-}" = "true" ] || [ "${CI:-}" = "1" ]; then cmake_args+=(-DIRGS_WERROR=ON); fi
 
 echo "== configuring ($build_dir)"
-cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DIRGS_WERROR="$werror" >/dev/null
+cmake -S "$root" -B "$build_dir" "${cmake_args[@]}" >/dev/null
 echo "== building with $jobs jobs"
 cmake --build "$build_dir" -j "$jobs"
 
