@@ -29,6 +29,12 @@
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
 #include "core/world/world_map.hpp"
+#include "widgets/canvas/grid_tiles.hpp"
+#include "widgets/canvas/map_layers_painter.hpp"
+#include "widgets/canvas/map_view.hpp"
+#include "widgets/canvas/robot_painter.hpp"
+#include "widgets/canvas/static_layer_cache.hpp"
+#include "widgets/canvas/trail_cache.hpp"
 
 namespace irgs::widgets {
 
@@ -108,71 +114,31 @@ class MapCanvas : public QWidget {
   void keyPressEvent(QKeyEvent* event) override;
 
  private:
-  // A cached static layer: rendered for one scale, covering the viewport plus a margin.
-  struct LayerCache {
-    QPixmap under;  // floor, metric grid, raster
-    QPixmap over;   // walls, obstacles, features, ceiling, graph (transparent background)
-    QPixmap trail;  // the trail, opaque strokes on transparent, extended as points arrive
-    bool trail_valid = false;
-    std::uint64_t trail_upto = 0;        // trail points drawn (counted like trail_pushed_)
-    std::uint64_t trail_dropped_at = 0;  // trail_dropped() when the trail was last drawn whole
-    double scale = 0.0;
-    irgs::Vec2 origin = irgs::Vec2::Zero();  // world point at the pixmaps' top-left corner
-    QSize size;                              // logical pixels
-    bool valid = false;
-  };
-
-  QTransform worldTransform() const;  // world metres -> widget pixels
-  void rebuildMapGeometry();
-  void ensureCache();
-  void renderUnder(QPainter& p, const QTransform& world, const QRectF& world_rect) const;
-  void renderOver(QPainter& p, const QTransform& world, const QRectF& world_rect) const;
-  void renderMetricGrid(QPainter& p, const QTransform& world, const QRectF& world_rect) const;
-  void paintGrid(QPainter& p) const;
-  void updateTrailCache();
-  QTransform cacheTransform() const;  // world metres -> cache pixmap pixels
-  void paintSonar(QPainter& p) const;
-  void paintRobot(QPainter& p, const irgs::Pose2& pose, bool ghost) const;
-  void paintScaleBar(QPainter& p) const;
+  MapView view() const;  // the current view as a value
+  StaticLayerVisibility staticLayers() const;
   void invalidateCache();
   void viewWasChanged();
   void stopAutoFit();
   void redrawWholeGrid();
   void blitGridCells(irgs::OccupancyGrid::CellRect cells);
   irgs::Box2 contentBounds() const;
-  double bodyRadius() const;
 
-  // Map and its prepared geometry (world coordinates).
-  irgs::WorldMap map_;
-  std::vector<QLineF> wall_segments_;  // world metres
-  std::vector<QPolygonF> obstacle_polygons_;
-  QPainterPath light_path_;
-  std::vector<QPolygonF> marker_polygons_;
-  QImage raster_image_;  // one pixel per raster cell, top row = largest y
+  // Static layers (map copy and prepared geometry) and their cached pictures.
+  MapLayersPainter map_layers_;
+  StaticLayerCache layer_cache_;
+  TrailCache trail_cache_;
 
-  irgs::RobotProfile profile_;
-  QPolygonF body_polygon_;  // body frame
+  // Robot profile and body outline.
+  RobotPainter robot_;
 
-  // Occupancy grid, drawn from square tiles of kTileCells x kTileCells cells (one pixel per
-  // cell, top row = largest y) created where the grid was observed, so growth never copies.
-  static constexpr int kTileCells = 256;
-  static constexpr int kTileMipFactor = 4;  // the reduced tile used when cells are < 0.5 px
-  struct GridTile {
-    QImage full;
-    QImage reduced;  // full scaled down by kTileMipFactor, rebuilt lazily
-    bool reduced_stale = true;
-  };
+  // Occupancy grid and its tiled picture.
   const irgs::OccupancyGrid* grid_ = nullptr;
   irgs::OccupancyGrid* mutable_grid_ = nullptr;
-  mutable std::unordered_map<std::int64_t, GridTile> tiles_;
+  GridTiles grid_tiles_;
 
   // Robot state.
   std::optional<irgs::Pose2> pose_;
   std::optional<irgs::Pose2> true_pose_;
-  struct SonarState {
-    irgs::SonarReading reading;
-    double time_s = 0.0;  // sample time of the reading
-  };
   std::vector<std::optional<SonarState>> sonar_;  // latest per sensor
   double last_time_s_ = 0.0;
   std::uint32_t bumpers_ = 0;
@@ -185,7 +151,6 @@ class MapCanvas : public QWidget {
   bool follow_robot_ = false;
   bool auto_fit_ = true;
   unsigned layers_ = ~0u;  // bit per Layer
-  LayerCache cache_;
 
   // Mouse drag.
   bool dragging_ = false;

@@ -1,0 +1,189 @@
+// Writing: WorldMap -> map JSON text (fixed key order, unknown keys kept), and the atomic save.
+#include "core/world/map_file.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/io/atomic_file.hpp"
+#include "core/world/map_file_internal.hpp"
+#include "core/world/map_json_layout.hpp"
+
+namespace irgs {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
+using map_file_internal::child;
+
+double finite(double v, const std::string& pointer) {
+  if (!std::isfinite(v))
+    throw std::invalid_argument("serializeMap: the value at " + pointer + " is not finite");
+  return v;
+}
+
+OrderedJson pointJson(const Vec2& p, const std::string& pointer) {
+  return OrderedJson::array({finite(p.x(), pointer + "/0"), finite(p.y(), pointer + "/1")});
+}
+
+OrderedJson pointsJson(const std::vector<Vec2>& points, const std::string& pointer) {
+  OrderedJson out = OrderedJson::array();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.push_back(pointJson(points[i], child(pointer, i)));
+  return out;
+}
+
+// Appends unknown keys that do not collide with the ones already written.
+void appendExtra(OrderedJson& out, const json& extra) {
+  if (!extra.is_object())
+    return;
+  for (auto it = extra.begin(); it != extra.end(); ++it) {
+    if (!out.contains(it.key()))
+      out[it.key()] = OrderedJson(it.value());
+  }
+}
+
+OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
+  OrderedJson root = OrderedJson::object();
+  root["format"] = kMapFormatName;
+  root["version"] = WorldMap::kFormatVersion;
+  root["name"] = map.name;
+  root["ceiling_height_m"] = finite(map.ceiling_height_m, "/ceiling_height_m");
+
+  OrderedJson start = OrderedJson::object();
+  start["x"] = finite(map.start.x, "/start/x");
+  start["y"] = finite(map.start.y, "/start/y");
+  start["theta_rad"] = finite(map.start.theta, "/start/theta_rad");
+  appendExtra(start, map.start_extra);
+  root["start"] = std::move(start);
+
+  if (map.raster) {
+    OrderedJson raster = OrderedJson::object();
+    raster["source"] = raster_source;
+    appendExtra(raster, map.raster->extra);
+    root["raster"] = std::move(raster);
+  }
+
+  OrderedJson walls = OrderedJson::array();
+  for (std::size_t i = 0; i < map.walls.size(); ++i) {
+    const Wall& w = map.walls[i];
+    OrderedJson o = OrderedJson::object();
+    if (!w.id.empty())
+      o["id"] = w.id;
+    o["points"] = pointsJson(w.points, child(child("/walls", i), "points"));
+    o["closed"] = w.closed;
+    appendExtra(o, w.extra);
+    walls.push_back(std::move(o));
+  }
+  root["walls"] = std::move(walls);
+
+  OrderedJson obstacles = OrderedJson::array();
+  for (std::size_t i = 0; i < map.obstacles.size(); ++i) {
+    const Obstacle& ob = map.obstacles[i];
+    OrderedJson o = OrderedJson::object();
+    if (!ob.id.empty())
+      o["id"] = ob.id;
+    o["polygon"] = pointsJson(ob.polygon, child(child("/obstacles", i), "polygon"));
+    appendExtra(o, ob.extra);
+    obstacles.push_back(std::move(o));
+  }
+  root["obstacles"] = std::move(obstacles);
+
+  OrderedJson features = OrderedJson::array();
+  for (std::size_t i = 0; i < map.features.size(); ++i) {
+    const PointFeature& f = map.features[i];
+    OrderedJson o = OrderedJson::object();
+    if (!f.id.empty())
+      o["id"] = f.id;
+    o["kind"] = f.kind == PointFeatureKind::kCorner ? "corner" : "edge";
+    o["position"] = pointJson(f.position, child(child("/features", i), "position"));
+    appendExtra(o, f.extra);
+    features.push_back(std::move(o));
+  }
+  root["features"] = std::move(features);
+
+  OrderedJson markers = OrderedJson::array();
+  for (std::size_t i = 0; i < map.markers.size(); ++i) {
+    const CeilingMarker& m = map.markers[i];
+    const std::string p = child("/ceiling_markers", i);
+    OrderedJson o = OrderedJson::object();
+    if (!m.id.empty())
+      o["id"] = m.id;
+    o["position"] = pointJson(m.position, child(p, "position"));
+    o["heading_rad"] = finite(m.heading_rad, child(p, "heading_rad"));
+    o["size_m"] = finite(m.size_m, child(p, "size_m"));
+    appendExtra(o, m.extra);
+    markers.push_back(std::move(o));
+  }
+  root["ceiling_markers"] = std::move(markers);
+
+  OrderedJson lights = OrderedJson::array();
+  for (std::size_t i = 0; i < map.lights.size(); ++i) {
+    const CeilingLight& l = map.lights[i];
+    const std::string p = child("/ceiling_lights", i);
+    OrderedJson o = OrderedJson::object();
+    if (!l.id.empty())
+      o["id"] = l.id;
+    o["a"] = pointJson(l.tube.a, child(p, "a"));
+    o["b"] = pointJson(l.tube.b, child(p, "b"));
+    o["width_m"] = finite(l.width_m, child(p, "width_m"));
+    appendExtra(o, l.extra);
+    lights.push_back(std::move(o));
+  }
+  root["ceiling_lights"] = std::move(lights);
+
+  OrderedJson graph = OrderedJson::object();
+  OrderedJson nodes = OrderedJson::array();
+  for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
+    const TopoNode& n = map.graph.nodes[i];
+    OrderedJson o = OrderedJson::object();
+    o["id"] = n.id;
+    o["position"] = pointJson(n.position, child(child("/graph/nodes", i), "position"));
+    if (!n.marker_id.empty())
+      o["marker"] = n.marker_id;
+    appendExtra(o, n.extra);
+    nodes.push_back(std::move(o));
+  }
+  graph["nodes"] = std::move(nodes);
+  OrderedJson edges = OrderedJson::array();
+  for (const TopoEdge& e : map.graph.edges) {
+    OrderedJson o = OrderedJson::object();
+    o["from"] = e.from;
+    o["to"] = e.to;
+    o["bidirectional"] = e.bidirectional;
+    appendExtra(o, e.extra);
+    edges.push_back(std::move(o));
+  }
+  graph["edges"] = std::move(edges);
+  appendExtra(graph, map.graph.extra);
+  root["graph"] = std::move(graph);
+
+  appendExtra(root, map.extra);
+  return root;
+}
+
+}  // namespace
+
+std::string serializeMap(const WorldMap& map) {
+  return map_file_internal::layoutJson(
+      toJson(map, map.raster ? map.raster->source : std::string()));
+}
+
+std::optional<std::string> saveMapFile(const WorldMap& map, const fs::path& path) {
+  std::string source = map.raster ? map.raster->source : std::string();
+  if (map.raster && !map.raster->resolved_path.empty()) {
+    std::error_code ec;
+    const fs::path folder = fs::absolute(path, ec).parent_path();
+    const fs::path relative = fs::path(map.raster->resolved_path).lexically_relative(folder);
+    source = ec || relative.empty() ? map.raster->resolved_path : relative.generic_string();
+  }
+  std::string text;
+  try {
+    text = map_file_internal::layoutJson(toJson(map, source));
+  } catch (const std::invalid_argument& e) {
+    return "cannot save " + path.string() + ": " + e.what();
+  }
+  return writeFileAtomically(path, text);
+}
+
+}  // namespace irgs
