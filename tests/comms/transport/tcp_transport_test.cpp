@@ -1,0 +1,172 @@
+#include "comms/transport/tcp_transport.hpp"
+
+#include "transport_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+namespace irgs::comms {
+namespace {
+
+using testing::asBytes;
+using testing::asText;
+using testing::pattern;
+using testing::Recorder;
+
+struct Server {
+  Recorder rec;
+  std::unique_ptr<Transport> transport;
+  Server(IoThread& io, std::uint16_t port) {
+    TcpServerOptions o;
+    o.host = "127.0.0.1";
+    o.port = port;
+    transport = makeTcpServerTransport(io, o, rec.callbacks());
+    transport->open();
+  }
+  std::uint16_t port() {
+    EXPECT_TRUE(rec.waitMessage("listening on")) << rec.allMessages();
+    return transport->localPort();
+  }
+};
+
+struct Client {
+  Recorder rec;
+  std::unique_ptr<Transport> transport;
+  Client(IoThread& io, std::uint16_t port,
+         std::chrono::milliseconds timeout = std::chrono::milliseconds(5000)) {
+    TcpClientOptions o;
+    o.host = "127.0.0.1";
+    o.port = port;
+    o.connect_timeout = timeout;
+    transport = makeTcpClientTransport(io, o, rec.callbacks());
+    transport->open();
+  }
+};
+
+TEST(TcpTransport, ClientAndServerExchangeBytesOnAnEphemeralLoopbackPort) {
+  IoThread io;
+  Server server(io, 0);
+  const auto port = server.port();
+  ASSERT_NE(port, 0);
+  EXPECT_EQ(server.transport->state(), TransportState::kOpening);
+  EXPECT_FALSE(server.transport->send(asBytes("nobody listens")));
+
+  Client client(io, port);
+  ASSERT_TRUE(client.rec.waitState(TransportState::kOpen)) << client.rec.allMessages();
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen)) << server.rec.allMessages();
+
+  const auto up = pattern(10000, 5);
+  ASSERT_TRUE(client.transport->send(std::span(up).first(10000)));
+  ASSERT_TRUE(server.transport->send(asBytes("ack")));
+  ASSERT_TRUE(client.rec.waitBytes(3));
+  EXPECT_EQ(asText(client.rec.bytes()), "ack");
+  ASSERT_TRUE(server.rec.waitBytes(10000));
+  const auto got = server.rec.bytes();
+  EXPECT_TRUE(std::equal(got.begin(), got.begin() + 10000, up.begin()));
+}
+
+TEST(TcpTransport, ClientReconnectsAfterTheServerRestartsOnTheSamePort) {
+  IoThread io;
+  auto server = std::make_unique<Server>(io, 0);
+  const auto port = server->port();
+  Client client(io, port);
+  ASSERT_TRUE(client.rec.waitState(TransportState::kOpen)) << client.rec.allMessages();
+  ASSERT_TRUE(server->rec.waitState(TransportState::kOpen));
+
+  server.reset();  // server process goes away
+  ASSERT_TRUE(client.rec.waitState(TransportState::kFailed)) << client.rec.allMessages();
+  EXPECT_NE(client.rec.lastMessage().find("lost"), std::string::npos) << client.rec.lastMessage();
+
+  server = std::make_unique<Server>(io, port);
+  ASSERT_EQ(server->port(), port);
+  client.transport->open();  // what the link manager does after a failure
+  ASSERT_TRUE(client.rec.waitState(TransportState::kOpen, 2)) << client.rec.allMessages();
+  ASSERT_TRUE(server->rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(client.transport->send(asBytes("back")));
+  ASSERT_TRUE(server->rec.waitBytes(4));
+  EXPECT_EQ(asText(server->rec.bytes()), "back");
+}
+
+TEST(TcpTransport, ServerReplacesItsClientWithANewOne) {
+  IoThread io;
+  Server server(io, 0);
+  const auto port = server.port();
+  Client first(io, port);
+  ASSERT_TRUE(first.rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+  Client second(io, port);
+  ASSERT_TRUE(second.rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(server.rec.waitMessage("replaced the previous client")) << server.rec.allMessages();
+  // The old client is disconnected; the server now talks to the new one only.
+  ASSERT_TRUE(first.rec.waitState(TransportState::kFailed)) << first.rec.allMessages();
+  ASSERT_TRUE(server.transport->send(asBytes("to second")));
+  ASSERT_TRUE(second.rec.waitBytes(9));
+  EXPECT_EQ(asText(second.rec.bytes()), "to second");
+  EXPECT_TRUE(first.rec.bytes().empty());
+}
+
+TEST(TcpTransport, ServerKeepsListeningWhenItsClientLeaves) {
+  IoThread io;
+  Server server(io, 0);
+  const auto port = server.port();
+  {
+    Client client(io, port);
+    ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+  }
+  ASSERT_TRUE(server.rec.waitMessage("left")) << server.rec.allMessages();
+  EXPECT_EQ(server.transport->state(), TransportState::kOpening);
+  Client again(io, port);
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen, 2)) << server.rec.allMessages();
+}
+
+TEST(TcpTransport, ClientFailsClearlyWhenNothingListens) {
+  IoThread io;
+  std::uint16_t port = 0;
+  {
+    Server probe(io, 0);  // find a free port, then release it
+    port = probe.port();
+  }
+  Client client(io, port);
+  ASSERT_TRUE(client.rec.waitState(TransportState::kFailed));
+  EXPECT_NE(client.rec.lastMessage().find("cannot connect to 127.0.0.1:" + std::to_string(port)),
+            std::string::npos)
+      << client.rec.lastMessage();
+}
+
+TEST(TcpTransport, ClientConnectTimesOutWhenTheServerNeverAnswers) {
+  // A listening socket with a full accept queue (backlog 0, never accepting) drops further SYNs,
+  // so a connect to it hangs until our timeout fires.
+  const int listener = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(listener, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(listener, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  ASSERT_EQ(::listen(listener, 0), 0);
+  socklen_t len = sizeof addr;
+  ASSERT_EQ(::getsockname(listener, reinterpret_cast<sockaddr*>(&addr), &len), 0);
+  const auto port = ntohs(addr.sin_port);
+
+  IoThread io;
+  std::vector<std::unique_ptr<Client>> fillers;
+  // Fill the accept queue: connections complete until it is full.
+  for (int i = 0; i < 8; ++i)
+    fillers.push_back(std::make_unique<Client>(io, port, std::chrono::milliseconds(300)));
+  std::size_t timed_out = 0;
+  for (auto& f : fillers)
+    ASSERT_TRUE(f->rec.waitSettled());
+  for (auto& f : fillers) {
+    if (f->rec.count(TransportState::kFailed) > 0 &&
+        f->rec.lastMessage().find("timed out after 300 ms") != std::string::npos)
+      ++timed_out;
+  }
+  EXPECT_GT(timed_out, 0u);
+  fillers.clear();
+  ::close(listener);
+}
+
+}  // namespace
+}  // namespace irgs::comms
