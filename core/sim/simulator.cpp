@@ -415,6 +415,11 @@ void Simulator::setCommand(const VelocityCommand& command) {
   impl_->command = command;
 }
 
+void Simulator::halt() {
+  impl_->command = {};
+  impl_->v_mps = impl_->omega_radps = 0.0;
+}
+
 TelemetrySample Simulator::step() {
   TelemetrySample sample;
   impl_->step(sample);

@@ -75,6 +75,9 @@ class Simulator {
   // Sets the commanded body velocity; limits and accelerations of the profile apply.
   // Throws std::invalid_argument for non-finite values.
   void setCommand(const VelocityCommand& command);
+  // Stops the wheels at once, bypassing the acceleration limits (an emergency brake, as a
+  // firmware safety stop does): command and body velocity become zero; poses are kept.
+  void halt();
   // Advances one fixed step of config().dt_s and returns the sample for the new time.
   TelemetrySample step();
   // step() writing into `sample`, reusing its vectors' capacity (no allocation once warm).
