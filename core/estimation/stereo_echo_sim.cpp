@@ -48,17 +48,8 @@ StereoEchoSimulator::StereoEchoSimulator(const WorldMap& map, StereoSonarParams 
     if ((b - a).norm() > kSamePoint_m)
       segments_.push_back({{a, b}, id});
   };
-  for (const Wall& wall : map.walls) {
-    for (std::size_t i = 0; i + 1 < wall.points.size(); ++i)
-      add(wall.points[i], wall.points[i + 1], wall.id);
-    if (wall.closed && wall.points.size() > 2)
-      add(wall.points.back(), wall.points.front(), wall.id);
-  }
-  for (const Obstacle& obstacle : map.obstacles) {
-    const auto& poly = obstacle.polygon;
-    for (std::size_t i = 0; poly.size() > 1 && i < poly.size(); ++i)
-      add(poly[i], poly[(i + 1) % poly.size()], obstacle.id);
-  }
+  for (const WorldMap::LabelledSegment& piece : map.labelledSegments())
+    add(piece.segment.a, piece.segment.b, piece.id);
   for (const PointFeature& f : map.features) {
     Feature feature{f.kind, f.position, f.id, {}};
     if (f.kind == PointFeatureKind::kCorner) {

@@ -33,21 +33,28 @@ bool pointInPolygon(const Vec2& p, const std::vector<Vec2>& polygon) {
 
 }  // namespace
 
-std::vector<Segment> WorldMap::segments() const {
-  std::vector<Segment> out;
+std::vector<WorldMap::LabelledSegment> WorldMap::labelledSegments() const {
+  std::vector<LabelledSegment> out;
   for (const Wall& wall : walls) {
     for (std::size_t i = 0; i + 1 < wall.points.size(); ++i) {
-      out.push_back({wall.points[i], wall.points[i + 1]});
+      out.push_back({{wall.points[i], wall.points[i + 1]}, wall.id});
     }
     if (wall.closed && wall.points.size() > 2)
-      out.push_back({wall.points.back(), wall.points[0]});
+      out.push_back({{wall.points.back(), wall.points[0]}, wall.id});
   }
   for (const Obstacle& obstacle : obstacles) {
     const auto& poly = obstacle.polygon;
     for (std::size_t i = 0; i < poly.size() && poly.size() > 1; ++i) {
-      out.push_back({poly[i], poly[(i + 1) % poly.size()]});
+      out.push_back({{poly[i], poly[(i + 1) % poly.size()]}, obstacle.id});
     }
   }
+  return out;
+}
+
+std::vector<Segment> WorldMap::segments() const {
+  std::vector<Segment> out;
+  for (LabelledSegment& labelled : labelledSegments())
+    out.push_back(labelled.segment);
   return out;
 }
 

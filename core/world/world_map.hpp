@@ -102,6 +102,12 @@ struct WorldMap {
 
   // Every reflecting segment: wall pieces and obstacle edges.
   std::vector<Segment> segments() const;
+  // The same segments, each with the id of the wall or obstacle it belongs to.
+  struct LabelledSegment {
+    Segment segment;
+    std::string id;
+  };
+  std::vector<LabelledSegment> labelledSegments() const;
   // Bounding box of walls, obstacles, features and the raster.
   Box2 bounds() const;
 
