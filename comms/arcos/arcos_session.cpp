@@ -1,0 +1,173 @@
+#include "comms/arcos/arcos_session.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
+#include "comms/arcos/arcos_commands.hpp"
+
+namespace irgs::comms::arcos {
+
+const char* toString(ArcosState state) {
+  switch (state) {
+    case ArcosState::kDisconnected:
+      return "disconnected";
+    case ArcosState::kSyncing:
+      return "syncing";
+    case ArcosState::kOpening:
+      return "opening";
+    case ArcosState::kConnected:
+      return "connected";
+    case ArcosState::kLost:
+      return "lost";
+  }
+  return "?";
+}
+
+ArcosClientSession::ArcosClientSession(ArcosSessionConfig config) : config_(config) {}
+
+void ArcosClientSession::setState(ArcosState state, double now_s, std::string text, bool warning) {
+  state_ = state;
+  events_.push_back({now_s, state, warning, std::move(text)});
+}
+
+void ArcosClientSession::queue(std::vector<std::uint8_t> payload) {
+  outgoing_.push_back(framePacket(payload));
+}
+
+void ArcosClientSession::start(double now_s) {
+  identity_.reset();
+  beginSync(now_s);
+}
+
+void ArcosClientSession::beginSync(double now_s) {
+  sync_step_ = 0;
+  sync_attempts_ = 0;
+  setState(ArcosState::kSyncing, now_s, "ARCOS: synchronising (SYNC0)");
+  sendSync(now_s);
+}
+
+void ArcosClientSession::sendSync(double now_s) {
+  queue(commandPayload(static_cast<std::uint8_t>(sync_step_)));
+  last_sync_sent_s_ = now_s;
+  ++sync_attempts_;
+}
+
+void ArcosClientSession::stop(double now_s) {
+  if (state_ == ArcosState::kOpening || state_ == ArcosState::kConnected ||
+      state_ == ArcosState::kLost) {
+    queue(commandPayload(kClose));
+  }
+  setState(ArcosState::kDisconnected, now_s, "ARCOS: closed");
+}
+
+void ArcosClientSession::sendCommand(std::vector<std::uint8_t> payload) {
+  if (state_ == ArcosState::kOpening || state_ == ArcosState::kConnected)
+    queue(std::move(payload));
+}
+
+void ArcosClientSession::onPacket(const Packet& packet, double now_s) {
+  if (state_ == ArcosState::kDisconnected)
+    return;
+  const std::span<const std::uint8_t> payload = packet.payload();
+  const std::uint8_t type = packet.type();
+
+  if (state_ == ArcosState::kSyncing) {
+    if (isStandardSipType(type)) {
+      // The robot still runs a previous connection: close it and synchronise again.
+      queue(commandPayload(kClose));
+      sync_step_ = 0;
+      return;
+    }
+    if (type != sync_step_)
+      return;  // a late echo of an earlier attempt
+    if (sync_step_ < 2) {
+      ++sync_step_;
+      sync_attempts_ = 0;
+      sendSync(now_s);
+      return;
+    }
+    identity_ = parseSync2Reply(payload);
+    if (!identity_)
+      identity_ = RobotIdentity{};  // ARCOS allows an empty reply; carry on without names
+    ++stats_.handshakes;
+    queue(commandPayload(kOpen));
+    if (config_.enable_motors)
+      queue(commandPayload(Command::kEnable, 1));
+    queue(commandPayload(Command::kSonar, config_.enable_sonar ? 1 : 0));
+    queue(commandPayload(kPulse));
+    last_pulse_s_ = now_s;
+    opened_s_ = now_s;
+    setState(ArcosState::kOpening, now_s,
+             "ARCOS: robot \"" + identity_->name + "\" class " + identity_->robot_class +
+                 " subclass " + identity_->subclass + "; opening");
+    return;
+  }
+
+  if (!isStandardSipType(type)) {
+    ++stats_.other_packets;
+    return;
+  }
+  SipParseResult parsed = parseStandardSip(payload);
+  if (!parsed.sip) {
+    ++stats_.bad_sips;
+    events_.push_back({now_s, state_, true, "ARCOS: bad SIP skipped: " + parsed.error});
+    return;
+  }
+  ++stats_.sips;
+  stats_.last_sip_s = now_s;
+  sips_.push_back(std::move(*parsed.sip));
+  if (state_ == ArcosState::kOpening || state_ == ArcosState::kLost)
+    setState(ArcosState::kConnected, now_s, "ARCOS: connected, receiving SIPs");
+}
+
+void ArcosClientSession::tick(double now_s) {
+  switch (state_) {
+    case ArcosState::kDisconnected:
+      return;
+    case ArcosState::kSyncing:
+      if (now_s - last_sync_sent_s_ >= config_.sync_retry_s) {
+        if (sync_attempts_ >= config_.max_sync_attempts) {
+          events_.push_back({now_s, state_, true,
+                             "ARCOS: no answer to SYNC" + std::to_string(sync_step_) +
+                                 "; closing and starting over"});
+          queue(commandPayload(kClose));
+          sync_step_ = 0;
+          sync_attempts_ = 0;
+        }
+        sendSync(now_s);
+      }
+      return;
+    case ArcosState::kOpening:
+    case ArcosState::kConnected: {
+      if (now_s - last_pulse_s_ >= config_.pulse_period_s) {
+        queue(commandPayload(kPulse));
+        last_pulse_s_ = now_s;
+      }
+      const double last = stats_.last_sip_s.value_or(opened_s_);
+      if (now_s - std::max(last, opened_s_) >= config_.sip_timeout_s) {
+        ++stats_.losses;
+        char text[96];
+        std::snprintf(text, sizeof text, "ARCOS: no SIP for %.1f s; link lost, resynchronising",
+                      config_.sip_timeout_s);
+        setState(ArcosState::kLost, now_s, text, true);
+        beginSync(now_s);
+      }
+      return;
+    }
+    case ArcosState::kLost:
+      return;
+  }
+}
+
+std::vector<std::vector<std::uint8_t>> ArcosClientSession::takeOutgoing() {
+  return std::exchange(outgoing_, {});
+}
+std::vector<StandardSip> ArcosClientSession::takeSips() {
+  return std::exchange(sips_, {});
+}
+std::vector<ArcosEvent> ArcosClientSession::takeEvents() {
+  return std::exchange(events_, {});
+}
+
+}  // namespace irgs::comms::arcos

@@ -1,0 +1,138 @@
+#include "comms/arcos/arcos_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "comms/arcos/arcos_commands.hpp"
+
+namespace irgs::comms::arcos {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+Packet packetOf(const Bytes& payload) {
+  Packet p;
+  std::copy(payload.begin(), payload.end(), p.bytes.begin());
+  p.size = payload.size();
+  return p;
+}
+
+// The command numbers of the packets the session wants to send.
+std::vector<int> commandsOf(const std::vector<Bytes>& packets) {
+  std::vector<int> out;
+  for (const Bytes& p : packets)
+    out.push_back(p.at(3));
+  return out;
+}
+
+Bytes sipPayload() {
+  StandardSip sip;
+  sip.sonars.push_back({0, 500});
+  return encodeStandardSip(sip);
+}
+
+void handshake(ArcosClientSession& session, double& t) {
+  session.start(t);
+  session.onPacket(packetOf({0}), t += 0.01);
+  session.onPacket(packetOf({1}), t += 0.01);
+  session.onPacket(packetOf(encodeSync2Reply({"MobileSim", "Pioneer", "p3dx"})), t += 0.01);
+  session.onPacket(packetOf(sipPayload()), t += 0.1);
+}
+
+TEST(ArcosClientSession, PerformsTheSyncHandshakeThenOpensEnablesAndPulses) {
+  ArcosClientSession session;
+  double t = 0.0;
+  session.start(t);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{0}));  // SYNC0
+  session.onPacket(packetOf({0}), t += 0.01);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{1}));  // SYNC1
+  session.onPacket(packetOf({1}), t += 0.01);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{2}));  // SYNC2
+  session.onPacket(packetOf(encodeSync2Reply({"MobileSim", "Pioneer", "p3dx"})), t += 0.01);
+  // OPEN, ENABLE, SONAR, PULSE
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{1, 4, 28, 0}));
+  EXPECT_EQ(session.state(), ArcosState::kOpening);
+  ASSERT_TRUE(session.identity());
+  EXPECT_EQ(session.identity()->subclass, "p3dx");
+  session.onPacket(packetOf(sipPayload()), t += 0.1);
+  EXPECT_EQ(session.state(), ArcosState::kConnected);
+  EXPECT_EQ(session.takeSips().size(), 1u);
+  session.tick(t += 0.6);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{0}));  // PULSE
+}
+
+TEST(ArcosClientSession, ResendsAnUnansweredSyncAndStartsOverAfterTooManyAttempts) {
+  ArcosSessionConfig config;
+  config.max_sync_attempts = 3;
+  ArcosClientSession session(config);
+  double t = 0.0;
+  session.start(t);
+  session.onPacket(packetOf({0}), t += 0.01);  // SYNC0 answered, SYNC1 goes unanswered
+  session.takeOutgoing();
+  std::vector<int> sent;
+  for (int i = 0; i < 3; ++i) {
+    session.tick(t += config.sync_retry_s + 0.01);
+    const auto commands = commandsOf(session.takeOutgoing());
+    sent.insert(sent.end(), commands.begin(), commands.end());
+  }
+  // Two more SYNC1, then CLOSE and SYNC0 again.
+  EXPECT_EQ(sent, (std::vector<int>{1, 1, 2, 0}));
+}
+
+TEST(ArcosClientSession, ClosesAStillRunningServerThatAnswersSyncWithSips) {
+  ArcosClientSession session;
+  session.start(0.0);
+  session.takeOutgoing();
+  session.onPacket(packetOf(sipPayload()), 0.05);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{2}));  // CLOSE
+  EXPECT_EQ(session.state(), ArcosState::kSyncing);
+}
+
+TEST(ArcosClientSession, DetectsLostSipsAndResynchronisesOnItsOwn) {
+  ArcosClientSession session;
+  double t = 0.0;
+  handshake(session, t);
+  session.takeEvents();
+  session.takeOutgoing();
+  session.tick(t += 1.0);
+  EXPECT_EQ(session.state(), ArcosState::kConnected);
+  session.tick(t += 0.6);  // 1.6 s without a SIP
+  EXPECT_EQ(session.state(), ArcosState::kSyncing);
+  EXPECT_EQ(session.stats().losses, 1u);
+  const auto events = session.takeEvents();
+  ASSERT_GE(events.size(), 1u);
+  EXPECT_EQ(events[0].state, ArcosState::kLost);
+  EXPECT_TRUE(events[0].warning);
+  handshake(session, t);
+  EXPECT_EQ(session.state(), ArcosState::kConnected);
+  EXPECT_EQ(session.stats().handshakes, 2u);
+}
+
+TEST(ArcosClientSession, CountsAndSkipsABrokenSip) {
+  ArcosClientSession session;
+  double t = 0.0;
+  handshake(session, t);
+  session.takeSips();
+  session.onPacket(packetOf({0x32, 1, 2}), t += 0.1);
+  EXPECT_EQ(session.stats().bad_sips, 1u);
+  EXPECT_TRUE(session.takeSips().empty());
+  EXPECT_EQ(session.state(), ArcosState::kConnected);
+}
+
+TEST(ArcosClientSession, SendsCommandsOnlyWhileOpenAndClosesOnStop) {
+  ArcosClientSession session;
+  session.sendCommand(commandPayload(Command::kVel, 100));
+  EXPECT_TRUE(session.takeOutgoing().empty());
+  double t = 0.0;
+  handshake(session, t);
+  session.takeOutgoing();
+  session.sendCommand(commandPayload(Command::kVel, 100));
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{11}));
+  session.stop(t);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{2}));
+  EXPECT_EQ(session.state(), ArcosState::kDisconnected);
+}
+
+}  // namespace
+}  // namespace irgs::comms::arcos
