@@ -17,6 +17,14 @@ struct SonarReading {
   bool echo = false;
 };
 
+// One rate-gyro sample (paper 001_…): the gyro's raw indicated rate about body z (CCW positive,
+// before any calibration) and the gyro's temperature, which drives its bias (A001-6).
+struct GyroReading {
+  double rate_radps = 0.0;
+  double temperature_c = 25.0;
+  bool saturated = false;  // the true rate was beyond the gyro's range; rate_radps is clipped
+};
+
 struct VelocityCommand {
   double linear_mps = 0.0;
   double angular_radps = 0.0;
@@ -35,6 +43,7 @@ struct TelemetrySample {
   std::vector<SonarReading> sonar;  // fresh readings taken at this sample's time
   std::uint32_t bumpers = 0;        // bit i = bumper i pressed
   std::vector<double> proximity_m;  // per proximity sensor; max range when nothing seen
+  std::optional<GyroReading> gyro;  // present when the robot has a gyro
 };
 
 }  // namespace irgs

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +18,7 @@ namespace {
 constexpr std::uint64_t kMotionStream = 1;
 constexpr std::uint64_t kSonarStream = 2;
 constexpr std::uint64_t kProximityStream = 3;
+constexpr std::uint64_t kGyroStream = 4;
 
 // Bisection steps when a step would penetrate: the remaining gap is below step * 2^-16.
 constexpr int kCollisionBisections = 16;
@@ -122,6 +124,7 @@ struct Simulator::Impl {
   SimRandom motion_rng;
   SimRandom sonar_rng;
   SimRandom proximity_rng;
+  std::optional<GyroSimulator> gyro;  // present when config.gyro.enabled
 
   Pose2 true_pose;
   Pose2 odom_pose;
@@ -158,6 +161,8 @@ struct Simulator::Impl {
         sonar_rng(SimRandom::stream(c.seed, kSonarStream)),
         proximity_rng(SimRandom::stream(c.seed, kProximityStream)) {
     validate(profile, config);
+    if (config.gyro.enabled)
+      gyro.emplace(config.gyro, SimRandom::stream(c.seed, kGyroStream));
     require(
         std::isfinite(map.start.x) && std::isfinite(map.start.y) && std::isfinite(map.start.theta),
         "the map's start pose is not finite");
@@ -400,6 +405,10 @@ struct Simulator::Impl {
     sample.proximity_m.resize(proximity.size());
     for (std::size_t i = 0; i < proximity.size(); ++i)
       sample.proximity_m[i] = proximity[i].value_m;
+    if (gyro)
+      sample.gyro = gyro->read(true_velocity.angular_radps, now, config.dt_s);
+    else
+      sample.gyro.reset();
   }
 };
 

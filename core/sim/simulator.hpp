@@ -16,8 +16,8 @@
 //   until it is clear. An empty body outline is a point robot that never collides.
 // * Sensors fire at their own rates; sensor i of n first fires at (i + 1) / n of its period, so
 //   they do not all fire in one step; at most one firing per sensor per step.
-// * Random numbers: one independent SimRandom stream per purpose (motion, sonar, proximity),
-//   all derived from SimConfig::seed (random.hpp): the same seed gives identical samples, a
+// * Random numbers: one independent SimRandom stream per purpose (motion, sonar, proximity,
+//   gyro), all derived from SimConfig::seed (random.hpp): the same seed gives identical samples, a
 //   different seed different noise. The random draws are bit-identical on every platform; the
 //   trigonometry of the motion comes from the platform's libm.
 
@@ -27,6 +27,7 @@
 
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
+#include "core/sim/gyro_sim.hpp"
 #include "core/sim/sim_world.hpp"
 #include "core/world/world_map.hpp"
 
@@ -61,6 +62,9 @@ struct SimConfig {
   RasterSolidity raster;
   // A bumper reports contact when geometry is this close to its bar (the switch's travel).
   double bumper_contact_m = 0.002;
+  // A yaw rate gyro (gyro_sim.hpp), read every step from its own random stream. Disabled by
+  // default: then samples carry no GyroReading and every other output is unchanged.
+  GyroErrorModel gyro;
 };
 
 class Simulator {
