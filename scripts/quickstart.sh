@@ -4,7 +4,8 @@
 #                                on the bundled default map (headless: run the default scenario
 #                                through irgs-sim and print where the outputs went)
 #   scripts/quickstart.sh test   install what is missing, build, run the whole test suite (ctest)
-# Environment: BUILD_DIR (default: build), JOBS (default: nproc), CI (true => -Werror).
+# Environment: BUILD_DIR (default: build), JOBS (default: nproc), CI (true => -Werror),
+# IRGS_BENCH_MRPT=1 (also install libmrpt-dev for the MRPT benchmark).
 set -euo pipefail
 
 job=${1:-}
@@ -25,6 +26,9 @@ packages=(build-essential cmake ninja-build pkg-config
   libeigen3-dev libboost-dev libboost-system-dev libboost-graph-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libyaml-cpp-dev
   xvfb xauth socat)
+# Benchmark-only: MRPT for bench/mapping's sonar insertion comparison (irgs_bench_mrpt_grid).
+# Opt in with IRGS_BENCH_MRPT=1; the normal build and the tests never need it.
+if [ "${IRGS_BENCH_MRPT:-}" = 1 ]; then packages+=(libmrpt-dev); fi
 
 missing=()
 for p in "${packages[@]}"; do
