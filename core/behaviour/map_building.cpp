@@ -1,0 +1,664 @@
+#include "core/behaviour/map_building.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+
+#include "core/behaviour/motion.hpp"
+#include "core/behaviour/position_revision.hpp"
+#include "core/planning/path_amendment.hpp"
+
+namespace irgs {
+namespace {
+
+constexpr double kApproachLimit_m = 0.8;  // drive at most this far toward a suspected obstacle
+
+double signedArea(const std::vector<Vec2>& poly) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    a += cross(poly[i], poly[(i + 1) % poly.size()]);
+  return 0.5 * a;
+}
+
+bool insidePolygon(const std::vector<Vec2>& poly, const Vec2& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+double distanceToLoop(const std::vector<Vec2>& loop, const Vec2& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    best = std::min(best, distanceToSegment(p, loop[i], loop[(i + 1) % loop.size()]));
+  return best;
+}
+
+int floorDiv(int a, int b) {
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+}  // namespace
+
+std::optional<std::string> mapBuildingConfigError(const MapBuildingConfig& c) {
+  if (const auto err = wallFollowConfigError(c.follow))
+    return "follow: " + *err;
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!std::isfinite(c.turn_quantum_rad) || c.turn_quantum_rad < 0.0 ||
+      c.turn_quantum_rad > degToRad(90.0))
+    return "turn_quantum_rad must be in [0, 90 deg]";
+  if (!positive(c.index_spacing_m) || !positive(c.closure_radius_m) ||
+      !positive(c.min_loop_length_m))
+    return "index spacing, closure radius and minimum loop length must be > 0";
+  if (c.closure_radius_m >= c.min_loop_length_m)
+    return "closure_radius_m must be smaller than min_loop_length_m";
+  if (!positive(c.map_valid_distance_m) || !positive(c.grid_resolution_m) ||
+      !positive(c.explore_cell_m) || c.explore_cell_m < c.grid_resolution_m)
+    return "map_valid_distance_m, grid_resolution_m > 0 and explore_cell_m >= grid resolution";
+  if (!std::isfinite(c.clearance_margin_m) || c.clearance_margin_m < 0.0)
+    return "clearance_margin_m must be >= 0";
+  if (!positive(c.travel_speed_mps) || !positive(c.max_time_s) || !positive(c.max_distance_m))
+    return "travel speed and budgets must be > 0";
+  if (const auto err = sonarInverseModelError(c.sonar_model))
+    return "sonar_model: " + *err;
+  return std::nullopt;
+}
+
+std::string_view toString(MapBuildingPhase phase) {
+  switch (phase) {
+    case MapBuildingPhase::kScan:
+      return "scan";
+    case MapBuildingPhase::kSeekWall:
+      return "seek wall";
+    case MapBuildingPhase::kFollowWall:
+      return "follow wall";
+    case MapBuildingPhase::kLoopClosed:
+      return "loop closed";
+    case MapBuildingPhase::kInterior:
+      return "interior";
+    case MapBuildingPhase::kObstacle:
+      return "obstacle";
+    case MapBuildingPhase::kDone:
+      return "done";
+    case MapBuildingPhase::kFailed:
+      return "failed";
+  }
+  return "?";
+}
+
+namespace {
+MapBuildingConfig normalised(MapBuildingConfig c) {
+  c.follow.wall_on_left = true;
+  c.follow.turn_quantum_rad = c.turn_quantum_rad;
+  return c;
+}
+MapBuildingConfig checked(const MapBuildingConfig& c) {
+  if (const auto err = mapBuildingConfigError(c))
+    throw std::invalid_argument("MapBuildingConfig: " + *err);
+  return normalised(c);
+}
+}  // namespace
+
+MapBuildingBehaviour::MapBuildingBehaviour(const RobotProfile& profile, MapBuildingConfig config)
+    : config_(checked(config)),
+      profile_(profile),
+      view_(profile, config_.map_valid_distance_m),
+      follower_(profile, config_.follow),
+      mapper_(profile, config_.sonar_model, config_.map_valid_distance_m),
+      grid_(config_.grid_resolution_m),
+      body_radius_m_(profile.bodyRadius()) {}
+
+VelocityCommand MapBuildingBehaviour::fail(const std::string& why) {
+  phase_ = MapBuildingPhase::kFailed;
+  message_ = why;
+  return {};
+}
+
+BehaviourStatus MapBuildingBehaviour::status() const {
+  BehaviourStatus s;
+  s.phase = std::string(toString(phase_));
+  if (phase_ == MapBuildingPhase::kObstacle)
+    s.phase += " " + std::to_string(obstacle_loops_.size() + 1);
+  s.finished = phase_ == MapBuildingPhase::kDone || phase_ == MapBuildingPhase::kFailed;
+  s.failed = phase_ == MapBuildingPhase::kFailed;
+  s.message = message_;
+  if (phase_ == MapBuildingPhase::kDone)
+    s.progress = 1.0;
+  else if (!outline_)
+    s.progress = 0.1 + 0.3 * std::min(1.0, loop_distance_m_ / 40.0);
+  else
+    s.progress = std::min(0.95, 0.5 + 0.05 * targets_visited_ + 0.05 * obstacleCount());
+  return s;
+}
+
+VelocityCommand MapBuildingBehaviour::startFollowing(const Pose2& pose, MapBuildingPhase phase) {
+  (void)pose;
+  follower_.restart();
+  phase_ = phase;
+  indices_.clear();
+  index_distance_.clear();
+  index_heading_.clear();
+  loop_distance_m_ = 0.0;
+  move_ = Move::kNone;
+  return {};
+}
+
+VelocityCommand MapBuildingBehaviour::scan(const Pose2& pose) {
+  // One full on-the-spot turn, CCW, noting the nearest echo ahead in every direction.
+  if (const auto front = view_.frontDistance()) {
+    if (scan_initial_range_ < 0.0 && scan_turned_rad_ < degToRad(10.0))
+      scan_initial_range_ = *front;
+    if (scan_best_range_ == 0.0 || *front < scan_best_range_) {
+      scan_best_range_ = *front;
+      scan_best_heading_ = pose.theta;
+    }
+  }
+  if (scan_turned_rad_ < 2.0 * kPi)
+    return {0.0, std::min(0.8, config_.follow.turn_rate_radps)};
+  // Prefer the initial heading unless another wall is clearly nearer (each turn adds error).
+  double heading = scan_start_heading_;
+  if (scan_best_range_ > 0.0 &&
+      (scan_initial_range_ < 0.0 || scan_initial_range_ > 1.25 * scan_best_range_ + 0.1))
+    heading =
+        scan_start_heading_ + quantiseAngle(wrapAngle(scan_best_heading_ - scan_start_heading_),
+                                            config_.turn_quantum_rad);
+  move_ = Move::kTurn;
+  move_heading_ = wrapAngle(heading);
+  phase_ = MapBuildingPhase::kSeekWall;
+  message_ = "scan done: heading for the nearest wall";
+  return {};
+}
+
+VelocityCommand MapBuildingBehaviour::onLoopClosed(const Pose2& pose, std::size_t from_index) {
+  TracedLoop loop;
+  loop.indices.assign(indices_.begin() + static_cast<std::ptrdiff_t>(from_index), indices_.end());
+  loop.indices.push_back(pose.position());
+  loop.signed_area_m2 = signedArea(loop.indices);
+  loop.obstacle = loop.signed_area_m2 > 0.0;
+  const bool was_outline_search = phase_ == MapBuildingPhase::kFollowWall;
+  phase_ = MapBuildingPhase::kLoopClosed;
+  move_ = Move::kPause;
+  pause_until_s_ = now_s_ + 1.0;
+  if (loop.obstacle) {
+    obstacle_loops_.push_back(loop);
+    if (was_outline_search && !outline_) {
+      first_wall_was_obstacle_ = obstacle_loops_.size() == 1 ? true : first_wall_was_obstacle_;
+      message_ = "loop closed counter-clockwise: the first wall was obstacle " +
+                 std::to_string(obstacle_loops_.size()) + "; going on to the real wall";
+      after_pause_ = MapBuildingPhase::kSeekWall;
+    } else {
+      message_ = "obstacle " + std::to_string(obstacle_loops_.size()) + " circumnavigated";
+      after_pause_ = outline_ ? MapBuildingPhase::kInterior : MapBuildingPhase::kSeekWall;
+    }
+  } else {
+    if (!outline_)
+      outline_ = loop;
+    message_ = "outline loop closed (" + std::to_string(loop.indices.size()) + " indices, " +
+               std::to_string(static_cast<int>(std::lround(-loop.signed_area_m2))) + " m2)";
+    after_pause_ = MapBuildingPhase::kInterior;
+  }
+  indices_.clear();
+  index_distance_.clear();
+  index_heading_.clear();
+  return {};
+}
+
+VelocityCommand MapBuildingBehaviour::followStep(const TelemetrySample& sample, const Pose2& pose) {
+  const VelocityCommand cmd = follower_.onSample(sample);
+  fitWallHeading(sample);
+  if (indices_.empty()) {
+    if (!follower_.following())
+      return cmd;
+    if (phase_ == MapBuildingPhase::kSeekWall)
+      phase_ = MapBuildingPhase::kFollowWall;
+    indices_.push_back(pose.position());
+    index_distance_.push_back(0.0);
+    index_heading_.push_back(pose.theta);
+    all_indices_.push_back(pose.position());
+    loop_distance_m_ = 0.0;
+    next_index_at_m_ = config_.index_spacing_m;
+    return cmd;
+  }
+  loop_distance_m_ += (pose.position() - last_pose_.position()).norm();
+  if (loop_distance_m_ >= next_index_at_m_) {
+    indices_.push_back(pose.position());
+    index_distance_.push_back(loop_distance_m_);
+    index_heading_.push_back(pose.theta);
+    all_indices_.push_back(pose.position());
+    next_index_at_m_ += config_.index_spacing_m;
+  }
+  // Back at an earlier index, heading the same way, after a real loop: closed.
+  if (follower_.following()) {
+    for (std::size_t i = 0; i < indices_.size(); ++i) {
+      if (loop_distance_m_ - index_distance_[i] < config_.min_loop_length_m)
+        break;
+      if ((pose.position() - indices_[i]).norm() < config_.closure_radius_m &&
+          std::abs(wrapAngle(pose.theta - index_heading_[i])) < degToRad(60.0))
+        return onLoopClosed(pose, i);
+    }
+  }
+  return cmd;
+}
+
+bool MapBuildingBehaviour::explained(const Vec2& p) const {
+  const double margin = config_.follow.distance_m + 0.3;
+  if (outline_ && distanceToLoop(outline_->indices, p) < margin)
+    return true;
+  for (const TracedLoop& loop : obstacle_loops_)
+    if (insidePolygon(loop.indices, p) || distanceToLoop(loop.indices, p) < margin)
+      return true;
+  return false;
+}
+
+void MapBuildingBehaviour::blacklist(const Vec2& p, double radius_m) {
+  blacklist_.push_back(p);
+  blacklist_radius_.push_back(radius_m);
+}
+
+std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(const Pose2& pose) {
+  if (!outline_)
+    return std::nullopt;
+  const double res = grid_.resolution_m();
+  const int f = std::max(1, static_cast<int>(std::lround(config_.explore_cell_m / res)));
+  const double cell = f * res;
+  const OccupancyGrid::CellRect rect = grid_.observedCellRect();
+  if (rect.empty())
+    return std::nullopt;
+  std::vector<float> values;
+  grid_.copyLogOdds(rect, values);
+  const int cc0 = floorDiv(rect.col0, f) - 1, cr0 = floorDiv(rect.row0, f) - 1;
+  const int W = floorDiv(rect.col1, f) - cc0 + 2, H = floorDiv(rect.row1, f) - cr0 + 2;
+  const auto at = [W](int c, int r) {
+    return static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c);
+  };
+  std::vector<int> observed(static_cast<std::size_t>(W * H), 0),
+      occupied(static_cast<std::size_t>(W * H), 0);
+  const float occ_threshold = 0.62f;  // p = 0.65
+  for (int r = 0; r < rect.height(); ++r)
+    for (int c = 0; c < rect.width(); ++c) {
+      const float v = values[static_cast<std::size_t>(r * rect.width() + c)];
+      if (std::isnan(v))
+        continue;
+      const std::size_t k = at(floorDiv(rect.col0 + c, f) - cc0, floorDiv(rect.row0 + r, f) - cr0);
+      ++observed[k];
+      if (v > occ_threshold)
+        ++occupied[k];
+    }
+  const auto centre = [&](int c, int r) {
+    return Vec2((cc0 + c + 0.5) * cell, (cr0 + r + 0.5) * cell);
+  };
+  enum : std::uint8_t { kUnknown, kFree, kOcc };
+  std::vector<std::uint8_t> state(static_cast<std::size_t>(W * H), kUnknown);
+  for (std::size_t k = 0; k < state.size(); ++k)
+    state[k] = occupied[k] >= 2 ? kOcc : (observed[k] * 2 >= f * f ? kFree : kUnknown);
+  // Blocked for travel: occupied grown by the body radius plus a margin; unknown.
+  const double inflate_m = body_radius_m_ + config_.clearance_margin_m;
+  const int rad = static_cast<int>(std::ceil(inflate_m / cell));
+  std::vector<std::uint8_t> blocked(state.size(), 0);
+  for (int r = 0; r < H; ++r)
+    for (int c = 0; c < W; ++c) {
+      if (state[at(c, r)] == kUnknown)
+        blocked[at(c, r)] = 1;
+      if (state[at(c, r)] != kOcc)
+        continue;
+      for (int dr = -rad; dr <= rad; ++dr)
+        for (int dc = -rad; dc <= rad; ++dc) {
+          const int x = c + dc, y = r + dr;
+          if (x < 0 || y < 0 || x >= W || y >= H)
+            continue;
+          if (std::hypot(dc, dr) * cell <= inflate_m + 0.5 * cell)
+            blocked[at(x, y)] = 1;
+        }
+    }
+  const int rc = static_cast<int>(std::floor(pose.x / cell)) - cc0;
+  const int rr = static_cast<int>(std::floor(pose.y / cell)) - cr0;
+  if (rc < 0 || rr < 0 || rc >= W || rr >= H)
+    return std::nullopt;
+  const auto listed = [&](const Vec2& p) {
+    for (std::size_t i = 0; i < blacklist_.size(); ++i)
+      if ((p - blacklist_[i]).norm() < blacklist_radius_[i])
+        return true;
+    return false;
+  };
+  // Dijkstra (8-connected, costs 10 / 14) from the robot's cell.
+  std::vector<int> cost(state.size(), std::numeric_limits<int>::max());
+  std::vector<std::int64_t> parent(state.size(), -1);
+  using Item = std::pair<int, std::int64_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  cost[at(rc, rr)] = 0;
+  open.push({0, static_cast<std::int64_t>(at(rc, rr))});
+  const double near_obstacle_m = inflate_m + 0.25;
+  const int near = static_cast<int>(std::ceil(near_obstacle_m / cell));
+  while (!open.empty()) {
+    const auto [d, k] = open.top();
+    open.pop();
+    if (d != cost[static_cast<std::size_t>(k)])
+      continue;
+    const int c = static_cast<int>(k % W), r = static_cast<int>(k / W);
+    const Vec2 p = centre(c, r);
+    const bool inside = insidePolygon(outline_->indices, p);
+    if (inside && d > 0 && !listed(p)) {
+      Target t;
+      t.position = p;
+      // An unvisited obstacle within reach of this cell?
+      bool found = false;
+      for (int dr = -near; dr <= near && !found; ++dr)
+        for (int dc = -near; dc <= near && !found; ++dc) {
+          const int x = c + dc, y = r + dr;
+          if (x < 0 || y < 0 || x >= W || y >= H || state[at(x, y)] != kOcc)
+            continue;
+          const Vec2 o = centre(x, y);
+          if ((o - p).norm() > near_obstacle_m || !insidePolygon(outline_->indices, o) ||
+              explained(o) || listed(o))
+            continue;
+          t.obstacle = true;
+          t.obstacle_point = o;
+          found = true;
+        }
+      // Or a frontier: enough unknown cells next to this one.
+      if (!found) {
+        int unknown = 0;
+        for (int dr = -2; dr <= 2; ++dr)
+          for (int dc = -2; dc <= 2; ++dc) {
+            const int x = c + dc, y = r + dr;
+            if (x >= 0 && y >= 0 && x < W && y < H && state[at(x, y)] == kUnknown &&
+                insidePolygon(outline_->indices, centre(x, y)))
+              ++unknown;
+          }
+        found = unknown >= 4;
+      }
+      if (found) {
+        std::vector<Vec2> cells;
+        for (std::int64_t q = k; q >= 0; q = parent[static_cast<std::size_t>(q)])
+          cells.push_back(centre(static_cast<int>(q % W), static_cast<int>(q / W)));
+        std::reverse(cells.begin(), cells.end());
+        cells.front() = pose.position();
+        t.path = compressPath(cells);
+        return t;
+      }
+    }
+    for (int dr = -1; dr <= 1; ++dr)
+      for (int dc = -1; dc <= 1; ++dc) {
+        if (dr == 0 && dc == 0)
+          continue;
+        const int x = c + dc, y = r + dr;
+        if (x < 0 || y < 0 || x >= W || y >= H || blocked[at(x, y)])
+          continue;
+        // No corner cutting past a blocked cell.
+        if (dr != 0 && dc != 0 && (blocked[at(c + dc, r)] || blocked[at(c, r + dr)]))
+          continue;
+        const int nd = d + (dr != 0 && dc != 0 ? 14 : 10);
+        if (nd < cost[at(x, y)]) {
+          cost[at(x, y)] = nd;
+          parent[at(x, y)] = k;
+          open.push({nd, static_cast<std::int64_t>(at(x, y))});
+        }
+      }
+  }
+  return std::nullopt;
+}
+
+VelocityCommand MapBuildingBehaviour::interior(const TelemetrySample& sample, const Pose2& pose) {
+  (void)sample;
+  const auto front = view_.frontDistance();
+  const bool wall_ahead =
+      front && *front < config_.follow.distance_m + config_.follow.front_margin_m;
+  switch (move_) {
+    case Move::kNone: {
+      target_ = chooseTarget(pose);
+      if (!target_) {
+        phase_ = MapBuildingPhase::kDone;
+        message_ = "map complete: outline closed, " + std::to_string(obstacleCount()) +
+                   " obstacle(s), no reachable unknown area left";
+        return {};
+      }
+      waypoint_ = 1;
+      if (target_->path.size() < 2) {
+        move_ = Move::kDrive;  // already there
+        move_length_m_ = 0.0;
+        move_start_ = pose.position();
+        return {};
+      }
+      move_ = Move::kTurn;
+      move_heading_ = std::atan2((target_->path[1] - pose.position()).y(),
+                                 (target_->path[1] - pose.position()).x());
+      return {};
+    }
+    case Move::kDrive: {
+      const double travelled = (pose.position() - move_start_).norm();
+      if (wall_ahead) {
+        const Vec2 hit = pose.position() + *front * pose.heading();
+        if (outline_ && insidePolygon(outline_->indices, hit) && !explained(hit)) {
+          message_ = "obstacle met: circumnavigate counter-clockwise";
+          return startFollowing(pose, MapBuildingPhase::kObstacle);
+        }
+        blacklist(target_->position, 0.3);
+        move_ = Move::kNone;
+        return {};
+      }
+      if (travelled < move_length_m_)
+        return straightCommand(pose.theta, move_heading_, config_.travel_speed_mps);
+      if (++waypoint_ < target_->path.size()) {
+        move_ = Move::kTurn;
+        const Vec2 d = target_->path[waypoint_] - pose.position();
+        move_heading_ = std::atan2(d.y(), d.x());
+        return {};
+      }
+      ++targets_visited_;
+      if (target_->obstacle) {
+        move_ = Move::kFaceObstacle;
+        const Vec2 d = target_->obstacle_point - pose.position();
+        move_heading_ = std::atan2(d.y(), d.x());
+        return {};
+      }
+      blacklist(target_->position, 0.4);
+      move_ = Move::kNone;
+      return {};
+    }
+    case Move::kApproach: {
+      if (wall_ahead) {
+        message_ = "obstacle reached: circumnavigate counter-clockwise";
+        return startFollowing(pose, MapBuildingPhase::kObstacle);
+      }
+      if ((pose.position() - move_start_).norm() > kApproachLimit_m) {
+        blacklist(target_->obstacle_point, 0.3);
+        move_ = Move::kNone;
+        return {};
+      }
+      return straightCommand(pose.theta, move_heading_, 0.75 * config_.travel_speed_mps);
+    }
+    default:
+      move_ = Move::kNone;
+      return {};
+  }
+}
+
+void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
+  if (config_.heading_lattice_rad <= 0.0 || !follower_.following()) {
+    wall_points_.clear();
+    return;
+  }
+  // Echo points of the wall-side sonars in the revised frame. Fitting a line through a metre of
+  // them measures the wall direction on a long baseline, unlike one pair of readings.
+  const SonarRoles::SidePair& pair = view_.roles().left;
+  const double present = config_.follow.distance_m + config_.follow.lost_margin_m;
+  for (const SonarReading& r : sample.sonar) {
+    if ((r.sensor != pair.front && r.sensor != pair.rear) || !r.echo || !std::isfinite(r.range_m))
+      continue;
+    const Pose2& mount = profile_.sonars[static_cast<std::size_t>(r.sensor)].mount;
+    if (r.range_m + std::abs(mount.y) > present)
+      continue;
+    const Pose2 sensor = pose_.compose(mount);
+    wall_points_.push_back(sensor.position() + r.range_m * sensor.heading());
+  }
+  if (wall_points_.size() < 8 ||
+      (wall_points_.back() - wall_points_.front()).norm() < config_.heading_fit_length_m)
+    return;
+  // Principal direction of the points (total least squares) and the spread across it.
+  Vec2 mean = Vec2::Zero();
+  for (const Vec2& p : wall_points_)
+    mean += p;
+  mean /= static_cast<double>(wall_points_.size());
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (const Vec2& p : wall_points_) {
+    const Vec2 d = p - mean;
+    sxx += d.x() * d.x();
+    syy += d.y() * d.y();
+    sxy += d.x() * d.y();
+  }
+  const double n = static_cast<double>(wall_points_.size());
+  const double dir = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  const double tr = (sxx + syy) / n, det = (sxx * syy - sxy * sxy) / (n * n);
+  const double minor = 0.5 * tr - std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+  if (std::sqrt(std::max(0.0, minor)) > 0.015) {
+    // Not one straight wall (a corner or clutter inside): drop the older half and go on.
+    wall_points_.erase(wall_points_.begin(),
+                       wall_points_.begin() + static_cast<std::ptrdiff_t>(wall_points_.size() / 2));
+    return;
+  }
+  wall_points_.clear();
+  const double error = wrapAngle(quantiseAngle(dir, config_.heading_lattice_rad) - dir);
+  // Obstacles may have any shape: only a face already close to the lattice counts.
+  const double capture = phase_ == MapBuildingPhase::kObstacle
+                             ? config_.obstacle_heading_capture_rad
+                             : config_.heading_capture_rad;
+  if (std::abs(error) <= capture) {
+    heading_offset_ = wrapAngle(heading_offset_ + error);
+    // Rotate the pose about the fitted wall's centre, so the wall the robot is beside stays
+    // where it was mapped and only the heading (and what follows) is revised.
+    const Vec2 rel = pose_.position() - mean;
+    const double c = std::cos(error), s = std::sin(error);
+    pose_.x = mean.x() + c * rel.x() - s * rel.y();
+    pose_.y = mean.y() + s * rel.x() + c * rel.y();
+    pose_.theta = wrapAngle(pose_.theta + error);
+    ++heading_corrections_;
+    // The revisions also calibrate the odometry: a heading error that grows with the distance
+    // driven (unequal wheel radii) is learned as a drift rate and removed between revisions
+    // (interior travel, obstacle faces off the lattice).
+    const double since = distance_m_ - distance_at_correction_;
+    if (since >= 1.0)
+      drift_radpm_ = std::clamp(drift_radpm_ + 0.5 * error / since, -0.02, 0.02);
+    distance_at_correction_ = distance_m_;
+  }
+}
+
+VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
+  now_s_ = raw.time_s;
+  if (phase_ == MapBuildingPhase::kDone || phase_ == MapBuildingPhase::kFailed)
+    return {};
+  const Pose2& odo = raw.odometry_pose;
+  if (!std::isfinite(odo.x) || !std::isfinite(odo.y) || !std::isfinite(odo.theta))
+    return fail("odometry pose is not finite");
+  if (!started_) {
+    pose_ = odo;
+    last_odometry_ = odo;
+  }
+  // Carry the odometry increment (body frame of the previous odometry pose) onto the revised
+  // pose: the heading revisions rotate everything driven after them.
+  const Vec2 step_body = last_odometry_.toBody(odo.position());
+  const double step_turn =
+      wrapAngle(odo.theta - last_odometry_.theta) + drift_radpm_ * step_body.norm();
+  pose_ = pose_.compose({step_body.x(), step_body.y(), step_turn});
+  last_odometry_ = odo;
+  TelemetrySample sample = raw;
+  sample.odometry_pose = pose_;
+  const Pose2 pose = pose_;
+  view_.update(sample);
+  mapper_.integrate(sample, grid_);
+  if (!started_) {
+    started_ = true;
+    start_time_s_ = sample.time_s;
+    last_pose_ = pose;
+    scan_start_heading_ = pose.theta;
+  }
+  distance_m_ += (pose.position() - last_pose_.position()).norm();
+  if (phase_ == MapBuildingPhase::kScan)
+    scan_turned_rad_ += std::abs(wrapAngle(pose.theta - last_pose_.theta));
+
+  VelocityCommand cmd;
+  if (sample.time_s - start_time_s_ > config_.max_time_s) {
+    cmd = fail("time budget of " + std::to_string(static_cast<int>(config_.max_time_s)) +
+               " s used up in phase '" + std::string(toString(phase_)) + "'");
+  } else if (distance_m_ > config_.max_distance_m) {
+    cmd = fail("distance budget of " + std::to_string(static_cast<int>(config_.max_distance_m)) +
+               " m used up in phase '" + std::string(toString(phase_)) + "'");
+  } else if (move_ == Move::kTurn || move_ == Move::kFaceObstacle) {
+    if (turnDone(pose.theta, move_heading_) &&
+        std::abs(sample.measured_velocity.angular_radps) < 0.1) {
+      view_.forgetBefore(sample.time_s);
+      if (phase_ == MapBuildingPhase::kSeekWall) {
+        cmd = startFollowing(pose, MapBuildingPhase::kSeekWall);
+      } else if (move_ == Move::kFaceObstacle) {
+        move_ = Move::kApproach;
+        move_start_ = pose.position();
+      } else {
+        move_ = Move::kDrive;
+        move_start_ = pose.position();
+        move_length_m_ = target_ && waypoint_ < target_->path.size()
+                             ? (target_->path[waypoint_] - pose.position()).norm()
+                             : 0.0;
+      }
+    } else {
+      cmd = {0.0, turnRate(pose.theta, move_heading_, config_.follow.turn_rate_radps)};
+    }
+  } else if (move_ == Move::kBackUp) {
+    if ((pose.position() - move_start_).norm() > 0.1)
+      move_ = Move::kNone;
+    else
+      cmd = {-0.1, 0.0};
+  } else if (move_ == Move::kPause) {
+    if (sample.time_s >= pause_until_s_) {
+      move_ = Move::kNone;
+      if (after_pause_ == MapBuildingPhase::kSeekWall) {
+        // Turn away from the obstacle just traced (it is on the left) and seek the wall.
+        move_ = Move::kTurn;
+        move_heading_ = wrapAngle(pose.theta - 0.5 * kPi);
+        phase_ = MapBuildingPhase::kSeekWall;
+      } else {
+        phase_ = after_pause_;
+      }
+    }
+  } else {
+    switch (phase_) {
+      case MapBuildingPhase::kScan:
+        cmd = scan(pose);
+        break;
+      case MapBuildingPhase::kSeekWall:
+      case MapBuildingPhase::kFollowWall:
+      case MapBuildingPhase::kObstacle:
+        cmd = followStep(sample, pose);
+        break;
+      case MapBuildingPhase::kInterior:
+        if (sample.bumpers != 0) {
+          move_ = Move::kBackUp;
+          move_start_ = pose.position();
+          if (target_)
+            blacklist(target_->position, 0.3);
+          cmd = {-0.1, 0.0};
+        } else {
+          cmd = interior(sample, pose);
+        }
+        break;
+      default:
+        break;
+    }
+  }
+  last_pose_ = pose;
+  return cmd;
+}
+
+}  // namespace irgs

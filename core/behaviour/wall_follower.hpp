@@ -1,0 +1,100 @@
+#pragma once
+// Wall following with the side sonars, as the thesis robot does it (003_…, digest 4.5-4.6):
+// drive with the chosen side parallel to the wall at a set distance; at a wall ahead stop and
+// turn by the front-sonar right-triangle angle in 15-degree quanta (revision (a)); when the wall
+// ends (convex corner) drive on until the body clears it and turn toward it (revision (b));
+// restore parallel with an on-the-spot quantised turn when the two side sonars show 15 degrees
+// or more (revision (c)); keep within the valid sonar distance, steering back when the wall
+// drifts away (revision (d)). All decisions use the odometry pose and the sonar readings only.
+
+#include <string>
+#include <string_view>
+
+#include "core/behaviour/behaviour.hpp"
+#include "core/behaviour/sonar_view.hpp"
+#include "core/robot/robot_profile.hpp"
+
+namespace irgs {
+
+struct WallFollowConfig {
+  double distance_m = 0.3;  // body origin to wall, perpendicular
+  bool wall_on_left = false;
+  double speed_mps = 0.2;
+  double turn_rate_radps = degToRad(60.0);         // on-the-spot turns
+  double valid_distance_m = 1.0;                   // (d): readings beyond are not used
+  double turn_quantum_rad = degToRad(15.0);        // all on-the-spot turns are multiples of this
+  double parallel_threshold_rad = degToRad(15.0);  // (c): correct when off by this or more
+  double front_margin_m = 0.12;  // a wall ahead closer than distance_m + this stops the robot
+  double lost_margin_m = 0.3;    // a side wall farther than distance_m + this has ended
+  double distance_gain_rad_per_m = 2.0;      // (d) approach angle per metre of distance error
+  double max_approach_rad = degToRad(30.0);  // (d) steepest approach back to the set distance
+  double heading_gain = 2.0;                 // omega = gain * heading error (1/s)
+  double back_up_m = 0.08;                   // after a bumper hit
+};
+
+// What is wrong with the config (non-positive distances or speeds, valid distance not beyond
+// the set distance, ...), or nothing.
+std::optional<std::string> wallFollowConfigError(const WallFollowConfig& config);
+
+enum class WallFollowMode { kSeek, kFollow, kTurn, kClear, kReacquire, kBackUp, kLost };
+std::string_view toString(WallFollowMode mode);
+
+class WallFollower : public Behaviour {
+ public:
+  // Throws std::invalid_argument for a bad config or a profile without a forward sonar and a
+  // side sonar on the wall side.
+  WallFollower(const RobotProfile& profile, WallFollowConfig config = {});
+
+  VelocityCommand onSample(const TelemetrySample& sample) override;
+  BehaviourStatus status() const override;
+  std::string_view name() const override { return "wall follow"; }
+
+  // Starts over in seek mode (drive straight until a wall), forgetting readings older than now.
+  void restart();
+  // Switches the followed side (used by map building: walls and obstacles on the left).
+  void setWallOnLeft(bool on_left);
+
+  WallFollowMode mode() const { return mode_; }
+  // True while the robot is following a wall it sees (not turning, seeking or reacquiring).
+  bool following() const { return mode_ == WallFollowMode::kFollow; }
+  const WallFollowConfig& config() const { return config_; }
+  int turnCount() const { return turns_; }                  // on-the-spot turns started
+  int parallelCorrections() const { return corrections_; }  // revision (c) turns
+  int cornerTurns() const { return corner_turns_; }         // revisions (a) and (b)
+  int bumps() const { return bumps_; }
+  double distanceTravelled_m() const { return distance_m_; }
+  // Wall angle relative to the heading (revision (c) right triangle) from the last step that
+  // saw the wall with both side sonars, nullopt otherwise. CCW positive.
+  std::optional<double> wallAngle() const { return wall_angle_; }
+
+ private:
+  VelocityCommand startTurn(double turn_rad, WallFollowMode next, const Pose2& pose);
+  VelocityCommand handleWallAhead(const Pose2& pose);
+  VelocityCommand follow(const TelemetrySample& sample, const Pose2& pose);
+
+  WallFollowConfig config_;
+  SonarView view_;
+  double side_sign_ = -1.0;  // +1 wall on the left
+  WallFollowMode mode_ = WallFollowMode::kSeek;
+  WallFollowMode next_mode_ = WallFollowMode::kFollow;
+  double target_heading_ = 0.0;
+  double hold_heading_ = 0.0;
+  Vec2 leg_start_ = Vec2::Zero();
+  double leg_length_m_ = 0.0;
+  double last_side_m_ = 0.0;
+  int lost_count_ = 0;
+  int skew_count_ = 0;
+  int reacquire_turns_ = 0;
+  int turns_ = 0;
+  int corrections_ = 0;
+  int corner_turns_ = 0;
+  int bumps_ = 0;
+  double distance_m_ = 0.0;
+  bool have_pose_ = false;
+  Pose2 last_pose_;
+  double now_s_ = 0.0;
+  std::string message_;
+  std::optional<double> wall_angle_;
+};
+
+}  // namespace irgs

@@ -1,0 +1,141 @@
+#include "core/behaviour/map_building.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/mapping/map_score.hpp"
+#include "core/scenario/behaviour_runner.hpp"
+#include "core/sim/sim_presets.hpp"
+#include "tests/core/behaviour/behaviour_test_support.hpp"
+
+namespace irgs {
+namespace {
+
+struct BuildRun {
+  BehaviourScenarioResult result;
+  MapScore score;
+};
+
+BuildRun build(const std::string& map_name, SimConfig sim, MapBuildingConfig config = {},
+               double budget_s = 1500.0) {
+  const WorldMap map = test::loadBundledMap(map_name);
+  const RobotProfile robot = test::thesisRobot();
+  MapBuildingBehaviour behaviour(robot, config);
+  BehaviourScenarioSpec spec;
+  spec.map = map;
+  spec.profile = robot;
+  spec.sim = sim;
+  spec.max_duration_s = budget_s;
+  BuildRun run;
+  run.result = runBehaviourScenario(spec, behaviour);
+  run.score = scoreMap(behaviour.grid(), map, map.start);
+  EXPECT_EQ(behaviour.phase(),
+            run.result.behaviour.failed ? MapBuildingPhase::kFailed : MapBuildingPhase::kDone);
+  return run;
+}
+
+TEST(MapBuilding, BuildsTheThesisLoopClockwiseWithF1AboveNinety) {
+  const WorldMap map = test::loadBundledMap("thesis_sim1_loop");
+  const RobotProfile robot = test::thesisRobot();
+  MapBuildingBehaviour behaviour(robot);
+  BehaviourScenarioSpec spec;
+  spec.map = map;
+  spec.profile = robot;
+  spec.sim = idealSimConfig();
+  spec.max_duration_s = 900.0;
+  const auto result = runBehaviourScenario(spec, behaviour);
+  ASSERT_TRUE(result.behaviour.finished);
+  EXPECT_FALSE(result.behaviour.failed) << result.behaviour.message;
+  ASSERT_TRUE(behaviour.outline().has_value());
+  EXPECT_LT(behaviour.outline()->signed_area_m2, 0.0);  // walls traced clockwise
+  EXPECT_FALSE(behaviour.firstWallWasObstacle());
+  EXPECT_EQ(behaviour.obstacleCount(), 0);
+  EXPECT_GT(behaviour.allIndices().size(), 20u);
+  // Phases in the thesis order.
+  std::vector<std::string> phases;
+  for (const auto& p : result.behaviour.phases)
+    phases.push_back(p.phase);
+  ASSERT_GE(phases.size(), 4u);
+  EXPECT_EQ(phases[0], "scan");
+  EXPECT_EQ(phases[1], "seek wall");
+  EXPECT_EQ(phases[2], "follow wall");
+  EXPECT_EQ(phases[3], "loop closed");
+  EXPECT_EQ(phases.back(), "done");
+  const MapScore score = scoreMap(behaviour.grid(), map, map.start);
+  EXPECT_GE(score.f1, 0.9) << "P " << score.precision << " R " << score.recall;
+  EXPECT_EQ(result.scenario.metrics.bumper_events, 0u);
+}
+
+TEST(MapBuilding, CircumnavigatesTheFourObstaclesOfTheSecondThesisMap) {
+  const BuildRun run = build("thesis_sim2_four_obstacles", idealSimConfig());
+  EXPECT_FALSE(run.result.behaviour.failed) << run.result.behaviour.message;
+  EXPECT_GE(run.score.f1, 0.9) << "P " << run.score.precision << " R " << run.score.recall;
+  int obstacle_phases = 0;
+  for (const auto& p : run.result.behaviour.phases)
+    obstacle_phases += p.phase.rfind("obstacle", 0) == 0 ? 1 : 0;
+  EXPECT_GE(obstacle_phases, 4);
+}
+
+TEST(MapBuilding, RecognisesThatTheFirstWallOfTheThirdThesisMapIsAnObstacle) {
+  // The start faces the box: the first loop closes counter-clockwise around it (Figs. 5.7.1-3).
+  const WorldMap map = test::loadBundledMap("thesis_sim3_five_obstacles");
+  const RobotProfile robot = test::thesisRobot();
+  MapBuildingBehaviour behaviour(robot);
+  BehaviourScenarioSpec spec;
+  spec.map = map;
+  spec.profile = robot;
+  spec.sim = idealSimConfig();
+  spec.max_duration_s = 1500.0;
+  const auto result = runBehaviourScenario(spec, behaviour);
+  EXPECT_FALSE(result.behaviour.failed) << result.behaviour.message;
+  EXPECT_TRUE(behaviour.firstWallWasObstacle());
+  ASSERT_GE(behaviour.obstacleCount(), 5);
+  EXPECT_GT(behaviour.obstacleLoops().front().signed_area_m2, 0.0);
+  ASSERT_TRUE(behaviour.outline().has_value());
+  EXPECT_LT(behaviour.outline()->signed_area_m2, 0.0);
+  const MapScore score = scoreMap(behaviour.grid(), map, map.start);
+  EXPECT_GE(score.f1, 0.9) << "P " << score.precision << " R " << score.recall;
+}
+
+TEST(MapBuilding, BuildsTheArenaWithDefaultNoiseAboveEighty) {
+  const BuildRun run = build("thesis_arena_250", typicalSimConfig(), {}, 900.0);
+  EXPECT_FALSE(run.result.behaviour.failed) << run.result.behaviour.message;
+  EXPECT_GE(run.score.f1, 0.8) << "P " << run.score.precision << " R " << run.score.recall;
+  EXPECT_EQ(run.result.scenario.metrics.bumper_events, 0u);
+}
+
+TEST(MapBuilding, ABudgetTooSmallEndsAsFailedWithTheReason) {
+  MapBuildingConfig config;
+  config.max_time_s = 30.0;
+  const BuildRun run = build("thesis_sim1_loop", idealSimConfig(), config, 100.0);
+  EXPECT_TRUE(run.result.behaviour.finished);
+  EXPECT_TRUE(run.result.behaviour.failed);
+  EXPECT_NE(run.result.behaviour.message.find("time budget"), std::string::npos);
+}
+
+TEST(MapBuilding, RejectsAnInvalidConfig) {
+  MapBuildingConfig config;
+  config.index_spacing_m = 0.0;
+  EXPECT_THROW(MapBuildingBehaviour(test::thesisRobot(), config), std::invalid_argument);
+  config = {};
+  config.closure_radius_m = 5.0;
+  EXPECT_THROW(MapBuildingBehaviour(test::thesisRobot(), config), std::invalid_argument);
+}
+
+TEST(MapBuilding, SameSeedGivesTheSameGrid) {
+  MapBuildingConfig config;
+  const BuildRun a = build("thesis_arena_250", typicalSimConfig(), config, 300.0);
+  const WorldMap map = test::loadBundledMap("thesis_arena_250");
+  MapBuildingBehaviour b(test::thesisRobot(), config);
+  BehaviourScenarioSpec spec;
+  spec.map = map;
+  spec.profile = test::thesisRobot();
+  spec.sim = typicalSimConfig();
+  spec.max_duration_s = 300.0;
+  const auto r = runBehaviourScenario(spec, b);
+  EXPECT_EQ(r.scenario.metrics.steps, a.result.scenario.metrics.steps);
+  EXPECT_DOUBLE_EQ(r.scenario.metrics.final_truth.x, a.result.scenario.metrics.final_truth.x);
+  EXPECT_DOUBLE_EQ(scoreMap(b.grid(), map, map.start).f1, a.score.f1);
+}
+
+}  // namespace
+}  // namespace irgs

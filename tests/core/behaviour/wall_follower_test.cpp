@@ -1,0 +1,84 @@
+#include "core/behaviour/wall_follower.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/scenario/behaviour_runner.hpp"
+#include "core/sim/sim_presets.hpp"
+#include "tests/core/behaviour/behaviour_test_support.hpp"
+
+namespace irgs {
+namespace {
+
+struct FollowRun {
+  BehaviourScenarioResult result;
+  double min_clearance_m = 1e9;  // body origin to the nearest wall, after the first contact
+  std::vector<double> segment_visits;
+};
+
+FollowRun runFollower(const WorldMap& map, WallFollowConfig config, SimConfig sim,
+                      double duration_s) {
+  const RobotProfile robot = test::thesisRobot();
+  WallFollower follower(robot, config);
+  BehaviourScenarioSpec spec;
+  spec.map = map;
+  spec.profile = robot;
+  spec.sim = sim;
+  spec.max_duration_s = duration_s;
+  FollowRun run;
+  const auto segments = map.segments();
+  run.segment_visits.assign(segments.size(), 1e9);
+  spec.observer = [&](const TelemetrySample& s, const Behaviour&) {
+    const Vec2 p = s.true_pose->position();
+    run.min_clearance_m = std::min(run.min_clearance_m, map.distanceToNearestSegment(p));
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      const Vec2 ab = segments[i].b - segments[i].a;
+      const double t = std::clamp((p - segments[i].a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      run.segment_visits[i] = std::min(run.segment_visits[i], (segments[i].a + t * ab - p).norm());
+    }
+  };
+  run.result = runBehaviourScenario(spec, follower);
+  return run;
+}
+
+TEST(WallFollower, FollowsEveryWallOfTheThesisLoopWithoutTouchingOne) {
+  WallFollowConfig config;  // wall on the right: the loop is driven counter-clockwise
+  const FollowRun run =
+      runFollower(test::loadBundledMap("thesis_sim1_loop"), config, idealSimConfig(), 260.0);
+  EXPECT_EQ(run.result.scenario.metrics.bumper_events, 0u);
+  EXPECT_GT(run.min_clearance_m, 0.17);  // the body (radius 0.162 m) never touched a wall
+  for (std::size_t i = 0; i < run.segment_visits.size(); ++i)
+    EXPECT_LT(run.segment_visits[i], 0.45) << "wall piece " << i << " never followed";
+  EXPECT_GT(run.result.scenario.metrics.distance_travelled_m, 30.0);
+}
+
+TEST(WallFollower, FollowsTheDefaultMapOnTheLeftWithNoiseAndNoCollision) {
+  WallFollowConfig config;
+  config.wall_on_left = true;
+  const FollowRun run =
+      runFollower(test::loadBundledMap("default"), config, typicalSimConfig(), 200.0);
+  EXPECT_EQ(run.result.scenario.metrics.bumper_events, 0u);
+  EXPECT_GT(run.min_clearance_m, 0.17);
+  EXPECT_GT(run.result.scenario.metrics.distance_travelled_m, 20.0);
+}
+
+TEST(WallFollower, RejectsABadConfigAndAProfileWithoutSideSonars) {
+  const RobotProfile robot = test::thesisRobot();
+  WallFollowConfig bad;
+  bad.valid_distance_m = 0.2;  // inside the set distance
+  EXPECT_THROW(WallFollower(robot, bad), std::invalid_argument);
+  RobotProfile blind = robot;
+  blind.sonars.clear();
+  EXPECT_THROW(WallFollower(blind, WallFollowConfig{}), std::invalid_argument);
+}
+
+TEST(WallFollower, StopsOnANonFinitePose) {
+  WallFollower follower(test::thesisRobot());
+  TelemetrySample s;
+  s.odometry_pose.x = NAN;
+  EXPECT_EQ(follower.onSample(s), VelocityCommand{});
+}
+
+}  // namespace
+}  // namespace irgs
