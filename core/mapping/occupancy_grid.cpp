@@ -1,6 +1,7 @@
 #include "core/mapping/occupancy_grid.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -13,9 +14,17 @@
 // Storage (see docs/decisions/grid.md): 64x64-cell tiles of float log-odds, allocated on the
 // first write to any of their cells and found through a hash map on packed tile coordinates.
 // NaN marks a never-observed cell, so "observed" costs no extra memory and the update loop
-// learns it from the value it loads anyway. A cone update first rasterises the cone into row
-// spans (sonar_cone.cpp) and then runs a branch-free loop over each span piece within a tile;
-// tiles are looked up once per cone through a small table over the cone's bounding box.
+// learns it from the value it loads anyway. A cone update first scans the cone into rows (each
+// row: its cells and, within them, the free run; sonar_cone.cpp) and then runs a branch-free,
+// vectorised loop over each row piece within a tile; tiles are looked up once per cone through a
+// small table over the cone's tiles. The row and tile buffers are kept between calls, so a warm
+// update allocates nothing.
+
+#if defined(__GNUC__)
+#define IRGS_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define IRGS_ALWAYS_INLINE
+#endif
 
 namespace irgs {
 namespace {
@@ -23,18 +32,72 @@ namespace {
 constexpr float kUnobserved = std::numeric_limits<float>::quiet_NaN();
 constexpr int kTileMask = OccupancyGrid::kTileSize - 1;
 
-// Adds delta to n consecutive cells, clamping to [lo, hi]; returns how many were unobserved.
-// Written without branches so that the compiler vectorises it.
-std::uint64_t updateRun(float* cells, int n, float delta, float lo, float hi) {
+// The update of one cell: an unobserved (NaN) cell starts from 0, then delta is added and the
+// sum clamped to [lo, hi]. Every path (cone rows, single cells) goes through this expression.
+inline float updatedCell(float v, bool unknown, float delta, float lo, float hi) {
+  return std::min(std::max((unknown ? 0.0f : v) + delta, lo), hi);
+}
+
+// Cells are updated in aligned groups of kLanes: a row piece [a, b] is widened to whole groups
+// and the cells outside it are written back unchanged, so the loop has no remainder whose
+// varying length would cost a branch misprediction per run (short cones have many short runs).
+// A tile row (kTileSize cells) is a whole number of groups, so groups never leave the tile.
+constexpr int kLanes = 4;
+static_assert(OccupancyGrid::kTileSize % kLanes == 0);
+
+// Updates the cells of groups [begin, end) that lie in [a, b] (the others are written back
+// unchanged): those in [fa, fb] (may be empty or reach outside [a, b]) by free_delta, the others
+// by occupied_delta. Returns how many updated cells were unobserved. Branch free, so that the
+// compiler vectorises it.
+inline std::uint32_t updateMasked(float* cells, int begin, int end, int a, int b, int fa, int fb,
+                                  float free_delta, float occupied_delta, float lo, float hi) {
   std::uint32_t fresh = 0;
-  for (int i = 0; i < n; ++i) {
-    float v = cells[i];
+  for (int i = begin; i < end; ++i) {
+    const float v = cells[i];
     const bool unknown = std::isnan(v);
-    fresh += unknown ? 1u : 0u;
-    v = (unknown ? 0.0f : v) + delta;
-    cells[i] = std::min(std::max(v, lo), hi);
+    const auto active = static_cast<std::uint32_t>((i >= a) & (i <= b));
+    const float delta = ((i >= fa) & (i <= fb)) ? free_delta : occupied_delta;
+    // Written as a bit blend: as `active ? updated : v` the compiler turns the write into a
+    // branch and the loop stays scalar.
+    const std::uint32_t keep_new = 0u - active;
+    const std::uint32_t bits =
+        (std::bit_cast<std::uint32_t>(updatedCell(v, unknown, delta, lo, hi)) & keep_new) |
+        (std::bit_cast<std::uint32_t>(v) & ~keep_new);
+    cells[i] = std::bit_cast<float>(bits);
+    fresh += active & static_cast<std::uint32_t>(unknown);
   }
   return fresh;
+}
+
+// updateMasked for cells that are all in [a, b]: half the work per cell.
+inline std::uint32_t updateAll(float* cells, int begin, int end, int fa, int fb, float free_delta,
+                               float occupied_delta, float lo, float hi) {
+  std::uint32_t fresh = 0;
+  for (int i = begin; i < end; ++i) {
+    const float v = cells[i];
+    const bool unknown = std::isnan(v);
+    const float delta = ((i >= fa) & (i <= fb)) ? free_delta : occupied_delta;
+    cells[i] = updatedCell(v, unknown, delta, lo, hi);
+    fresh += static_cast<std::uint32_t>(unknown);
+  }
+  return fresh;
+}
+
+// Updates cells [a, b] of one tile row (0 <= a <= b < kTileSize), the free ones [fa, fb] by
+// free_delta, the others by occupied_delta; returns how many were unobserved. Short pieces are one
+// masked pass; long ones a masked group at each end and an unmasked middle.
+IRGS_ALWAYS_INLINE inline std::uint32_t updateTileRow(float* cells, int a, int b, int fa, int fb,
+                                                      float free_delta, float occupied_delta,
+                                                      float lo, float hi) {
+  const int begin = a & ~(kLanes - 1);
+  const int end = (b | (kLanes - 1)) + 1;
+  if (end - begin <= 4 * kLanes)
+    return updateMasked(cells, begin, end, a, b, fa, fb, free_delta, occupied_delta, lo, hi);
+  return updateMasked(cells, begin, begin + kLanes, a, b, fa, fb, free_delta, occupied_delta, lo,
+                      hi) +
+         updateAll(cells, begin + kLanes, end - kLanes, fa, fb, free_delta, occupied_delta, lo,
+                   hi) +
+         updateMasked(cells, end - kLanes, end, a, b, fa, fb, free_delta, occupied_delta, lo, hi);
 }
 
 std::string describe(const Vec2& p) {
@@ -63,6 +126,30 @@ OccupancyGrid::OccupancyGrid(double resolution_m) : resolution_m_(resolution_m) 
     throw std::invalid_argument("OccupancyGrid: resolution_m must be finite and > 0, got " +
                                 std::to_string(resolution_m));
 }
+
+OccupancyGrid::OccupancyGrid(const OccupancyGrid& other)
+    : resolution_m_(other.resolution_m_),
+      cell_updates_(other.cell_updates_),
+      observed_cells_(other.observed_cells_),
+      observed_rect_(other.observed_rect_),
+      dirty_rect_(other.dirty_rect_),
+      tiles_(other.tiles_),
+      tile_index_(other.tile_index_) {}
+
+OccupancyGrid& OccupancyGrid::operator=(const OccupancyGrid& other) {
+  if (this != &other) {
+    resolution_m_ = other.resolution_m_;
+    cell_updates_ = other.cell_updates_;
+    observed_cells_ = other.observed_cells_;
+    observed_rect_ = other.observed_rect_;
+    dirty_rect_ = other.dirty_rect_;
+    tiles_ = other.tiles_;
+    tile_index_ = other.tile_index_;
+  }
+  return *this;
+}
+
+OccupancyGrid::~OccupancyGrid() = default;
 
 OccupancyGrid::OccupancyGrid(OccupancyGrid&& other) noexcept
     : resolution_m_(other.resolution_m_),
@@ -151,53 +238,47 @@ bool OccupancyGrid::observed(const Cell& c) const {
          !std::isnan(tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)]);
 }
 
-// A table over the tiles of one cone's bounding box, filled on first use, so that each run of
-// cells costs an array read instead of a hash lookup. Tile buffers never move (tiles_ holds
-// them by vector, and moving the outer vector keeps the inner buffers), so pointers stay valid.
-struct OccupancyGrid::TileCache {
-  explicit TileCache(const CellRect& cells)
-      : tx0(cells.col0 >> kTileShift),
-        ty0(cells.row0 >> kTileShift),
-        width((cells.col1 >> kTileShift) - tx0 + 1),
-        tiles(static_cast<std::size_t>(width) *
-                  static_cast<std::size_t>((cells.row1 >> kTileShift) - ty0 + 1),
-              nullptr) {}
-
-  float* get(int tx, int ty, OccupancyGrid& grid) {
-    float*& slot = tiles[static_cast<std::size_t>(ty - ty0) * static_cast<std::size_t>(width) +
-                         static_cast<std::size_t>(tx - tx0)];
-    if (slot == nullptr)
-      slot = grid.findOrCreateTile(tx, ty);
-    return slot;
-  }
-
-  int tx0, ty0, width;
-  std::vector<float*> tiles;
-};
+IRGS_ALWAYS_INLINE inline float* OccupancyGrid::cachedTile(int tx, int ty) {
+  // Tile buffers never move (tiles_ holds them by vector, and growing the outer vector moves the
+  // inner ones with their buffers), so the pointers stay valid for the whole cone.
+  float*& slot = tile_cache_[static_cast<std::size_t>(ty - cache_ty0_) *
+                                 static_cast<std::size_t>(cache_width_) +
+                             static_cast<std::size_t>(tx - cache_tx0_)];
+  if (slot == nullptr)
+    slot = findOrCreateTile(tx, ty);
+  return slot;
+}
 
 void OccupancyGrid::noteTouched(const CellRect& cells) {
   observed_rect_.extend(cells);
   dirty_rect_.extend(cells);
 }
 
-void OccupancyGrid::applySpan(int row, int col0, int col1, float delta, float lo, float hi,
-                              TileCache& cache) {
-  const int ty = row >> kTileShift;
-  const int row_offset = (row & kTileMask) * kTileSize;
-  for (int col = col0; col <= col1;) {
+struct OccupancyGrid::ConeDeltas {
+  float free_delta, occupied_delta, lo, hi;
+};
+
+IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, const ConeDeltas& d) {
+  const int ty = r.row >> kTileShift;
+  const int row_offset = (r.row & kTileMask) * kTileSize;
+  for (int col = r.col0; col <= r.col1;) {
     const int tx = col >> kTileShift;
-    const int run_end = std::min(col1, tx * kTileSize + kTileMask);
-    float* cells = cache.get(tx, ty, *this) + row_offset + (col & kTileMask);
-    observed_cells_ += updateRun(cells, run_end - col + 1, delta, lo, hi);
+    const int base = tx * kTileSize;
+    const int run_end = std::min(r.col1, base + kTileMask);
+    observed_cells_ +=
+        updateTileRow(cachedTile(tx, ty) + row_offset, col - base, run_end - base, r.free0 - base,
+                      r.free1 - base, d.free_delta, d.occupied_delta, d.lo, d.hi);
     col = run_end + 1;
   }
-  cell_updates_ += static_cast<std::uint64_t>(col1 - col0 + 1);
+  cell_updates_ += static_cast<std::uint64_t>(r.col1 - r.col0 + 1);
 }
 
 void OccupancyGrid::applyCell(int col, int row, float delta, float lo, float hi) {
   float* tile = findOrCreateTile(col >> kTileShift, row >> kTileShift);
-  observed_cells_ +=
-      updateRun(tile + (row & kTileMask) * kTileSize + (col & kTileMask), 1, delta, lo, hi);
+  float& cell = tile[(row & kTileMask) * kTileSize + (col & kTileMask)];
+  const bool unknown = std::isnan(cell);
+  observed_cells_ += unknown ? 1u : 0u;
+  cell = updatedCell(cell, unknown, delta, lo, hi);
   ++cell_updates_;
   noteTouched({col, row, col, row});
 }
@@ -237,24 +318,27 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
                                    double range_m, bool echo, const SonarInverseModel& model) {
   const SonarCone cone =
       checkedCone(*this, origin, heading_rad, beam_width_rad, range_m, echo, model);
-  std::vector<ConeSpan> spans;
-  rasteriseCone(cone, resolution_m_, spans);
-  if (spans.empty())
+  scanConeRows(cone, resolution_m_, scratch_rows_);
+  if (scratch_rows_.empty())
     return;
-  TileCache cache(coneCellBounds(cone, resolution_m_));
-  const auto free_delta = static_cast<float>(model.free_log_odds);
-  const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
-  const auto lo = static_cast<float>(model.clamp_min);
-  const auto hi = static_cast<float>(model.clamp_max);
-  // Spans come in ascending rows.
-  CellRect touched{std::numeric_limits<int>::max(), spans.front().row,
-                   std::numeric_limits<int>::min(), spans.back().row};
-  for (const ConeSpan& s : spans) {
-    applySpan(s.row, s.col0, s.col1, s.zone == ConeZone::kFree ? free_delta : occupied_delta, lo,
-              hi, cache);
-    touched.col0 = std::min(touched.col0, s.col0);
-    touched.col1 = std::max(touched.col1, s.col1);
+  // Rows come ascending.
+  CellRect touched{std::numeric_limits<int>::max(), scratch_rows_.front().row,
+                   std::numeric_limits<int>::min(), scratch_rows_.back().row};
+  for (const ConeRow& r : scratch_rows_) {
+    touched.col0 = std::min(touched.col0, r.col0);
+    touched.col1 = std::max(touched.col1, r.col1);
   }
+  cache_tx0_ = touched.col0 >> kTileShift;
+  cache_ty0_ = touched.row0 >> kTileShift;
+  cache_width_ = (touched.col1 >> kTileShift) - cache_tx0_ + 1;
+  const int cache_height = (touched.row1 >> kTileShift) - cache_ty0_ + 1;
+  tile_cache_.assign(
+      static_cast<std::size_t>(cache_width_) * static_cast<std::size_t>(cache_height), nullptr);
+  const ConeDeltas deltas{static_cast<float>(model.free_log_odds),
+                          static_cast<float>(model.occupied_log_odds),
+                          static_cast<float>(model.clamp_min), static_cast<float>(model.clamp_max)};
+  for (const ConeRow& r : scratch_rows_)
+    applyConeRow(r, deltas);
   noteTouched(touched);
 }
 

@@ -18,6 +18,8 @@
 
 namespace irgs {
 
+struct ConeRow;  // core/mapping/sonar_cone.hpp
+
 struct Cell {
   int col = 0;
   int row = 0;
@@ -52,8 +54,10 @@ class OccupancyGrid {
   // Throws std::invalid_argument unless resolution_m is finite and > 0.
   explicit OccupancyGrid(double resolution_m = 0.01);
 
-  OccupancyGrid(const OccupancyGrid&) = default;
-  OccupancyGrid& operator=(const OccupancyGrid&) = default;
+  // Defined in the .cpp, where ConeRow (scratch storage) is complete.
+  OccupancyGrid(const OccupancyGrid& other);
+  OccupancyGrid& operator=(const OccupancyGrid& other);
+  ~OccupancyGrid();
   // A moved-from grid is empty (nothing observed), with its resolution kept.
   OccupancyGrid(OccupancyGrid&& other) noexcept;
   OccupancyGrid& operator=(OccupancyGrid&& other) noexcept;
@@ -160,10 +164,12 @@ class OccupancyGrid {
   static TileKey tileKey(int tx, int ty);
   const float* findTile(int tx, int ty) const;
   float* findOrCreateTile(int tx, int ty);
-  // Adds delta to cells [col0, col1] of one row, clamping to [lo, hi]. The tile of each run of
-  // cells is taken from cache (a table over the cone's tiles) to avoid hashing per run.
-  struct TileCache;
-  void applySpan(int row, int col0, int col1, float delta, float lo, float hi, TileCache& cache);
+  // Applies one rasterised cone row (free and occupied increments, clamped to [lo, hi]). The
+  // tile of each run of cells comes from tile_cache_, a table over the cone's tiles filled on
+  // first use, so that no run costs a hash lookup.
+  struct ConeDeltas;
+  void applyConeRow(const ConeRow& row, const ConeDeltas& deltas);
+  float* cachedTile(int tx, int ty);
   void applyCell(int col, int row, float delta, float lo, float hi);
   void noteTouched(const CellRect& cells);
 
@@ -174,6 +180,11 @@ class OccupancyGrid {
   CellRect dirty_rect_;
   std::vector<std::vector<float>> tiles_;
   std::unordered_map<TileKey, std::uint32_t> tile_index_;
+  // Scratch of integrateSonar, kept between calls so that a cone update allocates nothing once
+  // warm. Not part of the grid's value: copies start with it empty.
+  std::vector<ConeRow> scratch_rows_;
+  std::vector<float*> tile_cache_;
+  int cache_tx0_ = 0, cache_ty0_ = 0, cache_width_ = 0;
 };
 
 }  // namespace irgs

@@ -7,6 +7,12 @@
 // and classify() must round every expression identically, which a fused multiply-add in one
 // place and not the other would break.
 
+#if defined(__GNUC__)
+#define IRGS_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define IRGS_ALWAYS_INLINE
+#endif
+
 namespace irgs {
 namespace {
 
@@ -47,14 +53,38 @@ int lastTrue(int lo, int hi, int guess, const G& g) {
   return firstTrue(lo, hi, guess + 1, [&g](int c) { return !g(c); }) - 1;
 }
 
-// A fractional column index (already floored or ceiled) as an int guess, clamped so that a huge,
-// infinite or NaN estimate cannot overflow.
-int toGuess(double index, int lo, int hi) {
-  if (!(index > static_cast<double>(lo) - 1.0))
+// floor(x) as an index guess, clamped to [lo - 1, hi + 1] (NaN gives lo - 1), so that a huge,
+// infinite or NaN estimate cannot overflow. Cheaper than std::floor plus a conversion: once
+// clamped, x - (lo - 1) >= 0, where truncation is flooring. Rounding in that subtraction can
+// only move a guess by one, which the callers' confirmation absorbs.
+inline int floorGuess(double x, int lo, int hi) {
+  const double t = x - (static_cast<double>(lo) - 1.0);
+  if (!(t > 0.0))
     return lo - 1;
-  if (!(index < static_cast<double>(hi) + 1.0))
+  if (!(t < static_cast<double>(hi - lo) + 2.0))
     return hi + 1;
-  return static_cast<int>(index);
+  return lo - 1 + static_cast<int>(t);
+}
+// ceil(x) likewise.
+inline int ceilGuess(double x, int lo, int hi) {
+  return -floorGuess(-x, -hi, -lo);
+}
+
+// firstTrue for a guess that is almost always the answer (an analytic boundary estimate): two
+// evaluations confirm it, without data-dependent branches in the common case; otherwise walks.
+// Requires lo <= hi + 1.
+template <class G>
+inline int firstTrueNear(int lo, int hi, int guess, const G& g) {
+  const int c = std::clamp(guess, lo, hi + 1);
+  const bool below = c > lo && g(c - 1);  // the answer is left of c
+  const bool above = c <= hi && !g(c);    // the answer is right of c
+  if (!(below || above)) [[likely]]
+    return c;
+  return firstTrue(lo, hi, c, g);
+}
+template <class G>
+inline int lastTrueNear(int lo, int hi, int guess, const G& g) {
+  return firstTrueNear(lo, hi, guess + 1, [&g](int c) { return !g(c); }) - 1;
 }
 
 int clampedFloor(double v) {
@@ -130,11 +160,12 @@ OccupancyGrid::CellRect coneCellBounds(const SonarCone& cone, double resolution_
   box.extend(Vec2(cone.apex + r * cone.right_edge));
   box.extend(Vec2(cone.apex + r * cone.left_edge));
   // The arc reaches further than its end points where it crosses an axis direction.
+  // The beam test is the criterion's own half-plane pair (a beam under pi is exactly their
+  // intersection), so no angle arithmetic per call.
   const Vec2 axes[4] = {Vec2::UnitX(), Vec2::UnitY(), -Vec2::UnitX(), -Vec2::UnitY()};
-  for (int k = 0; k < 4; ++k) {
-    const double direction = wrapAngle(k * 0.5 * kPi);
-    if (std::abs(wrapAngle(direction - cone.heading_rad)) <= cone.half_angle_rad)
-      box.extend(Vec2(cone.apex + r * axes[k]));
+  for (const Vec2& axis : axes) {
+    if (leftOfRightEdge(cone, axis.x(), axis.y()) && rightOfLeftEdge(cone, axis.x(), axis.y()))
+      box.extend(Vec2(cone.apex + r * axis));
   }
   // One cell of padding covers centres that pass the criterion by rounding alone.
   OccupancyGrid::CellRect rect;
@@ -145,94 +176,146 @@ OccupancyGrid::CellRect coneCellBounds(const SonarCone& cone, double resolution_
   return rect;
 }
 
-void rasteriseCone(const SonarCone& cone, double resolution_m, std::vector<ConeSpan>& spans) {
-  spans.clear();
+void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows) {
+  rows.clear();
   if (!cone.has_arc && !(cone.free_radius2 > 0.0))
     return;  // nothing can satisfy |d|^2 < 0
   const OccupancyGrid::CellRect bounds = coneCellBounds(cone, resolution_m);
   const double ox = cone.apex.x(), oy = cone.apex.y();
   const double res = resolution_m;
+  const double inv_res = 1.0 / res;
   const int lo = bounds.col0, hi = bounds.col1;
-  // Fractional column index of world x: the centre of column c is at (c + 0.5) * res.
-  const auto colOf = [res](double x) { return x / res - 0.5; };
-  const int apex_col = toGuess(std::ceil(colOf(ox)), lo, hi);
+  const auto dxOf = [&](int col) { return cellCentreCoordinate(col, res) - ox; };
+  // Estimates only (the criterion decides): fractional column index of x = ox + dx, the centre
+  // of column c being at (c + 0.5) * res.
+  const double apex_col = ox * inv_res - 0.5;
+
+  // Along a row |d|^2 falls while dx < 0 and rises from the first column with dx >= 0 (rounding
+  // is monotone), so each disc is one interval, searched on either side of that column. dx does
+  // not depend on the row: one search per cone.
+  const int split =
+      firstTrue(lo, hi, ceilGuess(apex_col, lo, hi), [&](int col) { return dxOf(col) >= 0.0; });
+
+  // The two edge tests are monotone along a row, their direction set by the sign of the edge's y
+  // component; the edge crosses the row at column apex_col + dy * ux / (uy * res).
+  const Vec2& ur = cone.right_edge;
+  const Vec2& ul = cone.left_edge;
+  const double right_slope = ur.y() != 0.0 ? ur.x() / ur.y() * inv_res : 0.0;
+  const double left_slope = ul.y() != 0.0 ? ul.x() / ul.y() * inv_res : 0.0;
+
+  // Rows outside the outer disc: |d|^2 >= dy^2 for every cell of the row.
+  const double outer2 = cone.has_arc ? cone.arc_outer_radius2 : cone.free_radius2;
+  const double free2 = cone.free_radius2;
+  const bool outer_strict = !cone.has_arc;
 
   for (int row = bounds.row0; row <= bounds.row1; ++row) {
     const double dy = cellCentreCoordinate(row, res) - oy;
     const double dy2 = dy * dy;
-    // |d|^2 >= dy^2 for every cell of the row (rounding is monotone), so whole rows drop out.
-    if (cone.has_arc ? !(dy2 <= cone.arc_outer_radius2) : !(dy2 < cone.free_radius2))
+    if (outer_strict ? !(dy2 < outer2) : !(dy2 <= outer2))
       continue;
-    const auto dxOf = [&](int col) { return cellCentreCoordinate(col, res) - ox; };
 
-    // 1. The beam: each edge test is monotone along the row, its direction set by the sign of
-    // the edge's y component. Estimates from the edge/row intersection x = ox + dy * ux / uy.
+    // 1. The beam [wa, wb].
     int wa = lo, wb = hi;
     {
-      const Vec2& u = cone.right_edge;
       const auto ok = [&](int col) { return leftOfRightEdge(cone, dxOf(col), dy); };
-      if (u.y() > 0.0) {
-        wb = lastTrue(lo, hi, toGuess(std::floor(colOf(ox + dy * u.x() / u.y())), lo, hi), ok);
-      } else if (u.y() < 0.0) {
-        wa = firstTrue(lo, hi, toGuess(std::ceil(colOf(ox + dy * u.x() / u.y())), lo, hi), ok);
-      } else if (!ok(lo)) {
+      const double at = apex_col + dy * right_slope;
+      if (ur.y() > 0.0)
+        wb = lastTrueNear(lo, hi, floorGuess(at, lo, hi), ok);
+      else if (ur.y() < 0.0)
+        wa = firstTrueNear(lo, hi, ceilGuess(at, lo, hi), ok);
+      else if (!ok(lo))
         continue;  // a horizontal edge: the row is entirely on one side
-      }
     }
     {
-      const Vec2& u = cone.left_edge;
       const auto ok = [&](int col) { return rightOfLeftEdge(cone, dxOf(col), dy); };
-      if (u.y() > 0.0) {
-        wa = std::max(
-            wa, firstTrue(lo, hi, toGuess(std::ceil(colOf(ox + dy * u.x() / u.y())), lo, hi), ok));
-      } else if (u.y() < 0.0) {
-        wb = std::min(
-            wb, lastTrue(lo, hi, toGuess(std::floor(colOf(ox + dy * u.x() / u.y())), lo, hi), ok));
-      } else if (!ok(lo)) {
+      const double at = apex_col + dy * left_slope;
+      if (ul.y() > 0.0)
+        wa = std::max(wa, firstTrueNear(lo, hi, ceilGuess(at, lo, hi), ok));
+      else if (ul.y() < 0.0)
+        wb = std::min(wb, lastTrueNear(lo, hi, floorGuess(at, lo, hi), ok));
+      else if (!ok(lo))
         continue;
-      }
     }
     if (wa > wb)
       continue;
 
-    // 2. The discs |d|^2 < r_free^2 and |d|^2 <= r_outer^2: along the row |d|^2 falls until the
-    // column where dx turns non-negative and rises after it, so each disc is one interval found
-    // by a search on either side of that column. Estimates: x = ox -+ sqrt(r^2 - dy^2).
-    const int split = firstTrue(lo, hi, apex_col, [&](int col) { return dxOf(col) >= 0.0; });
-    const auto discInterval = [&](double r2, bool strict, int& a, int& b) {
-      const auto inside = [&](int col) {
-        const double d2 = radius2(dxOf(col), dy);
-        return strict ? d2 < r2 : d2 <= r2;
-      };
-      const double half_chord = std::sqrt(std::max(0.0, r2 - dy2));
-      a = firstTrue(lo, split - 1, toGuess(std::ceil(colOf(ox - half_chord)), lo, hi), inside);
-      b = lastTrue(split, hi, toGuess(std::floor(colOf(ox + half_chord)), lo, hi), inside);
-    };
-    int fa = 0, fb = -1;  // free cells
-    if (dy2 < cone.free_radius2)
-      discInterval(cone.free_radius2, true, fa, fb);
-
-    const auto emit = [&](int a, int b, ConeZone zone) {
-      a = std::max(a, wa);
-      b = std::min(b, wb);
-      if (a <= b)
-        spans.push_back({row, a, b, zone});
-    };
-    if (cone.has_arc) {
-      // The free disc lies inside the outer disc (r_free <= r_outer), so the arc band of the row
-      // is the outer interval minus the free one: up to two runs.
-      int oa = 0, ob = -1;
-      discInterval(cone.arc_outer_radius2, false, oa, ob);
-      if (fa > fb) {
-        emit(oa, ob, ConeZone::kOccupied);
-      } else {
-        emit(oa, fa - 1, ConeZone::kOccupied);
-        emit(fa, fb, ConeZone::kFree);
-        emit(fb + 1, ob, ConeZone::kOccupied);
+    // 2. A disc's cells within [a, b], an interval [first, last] (empty when first > last):
+    // when an end of [a, b] is inside it is that end; otherwise left of the split the first
+    // inside column, right of it the last one, each estimated at ox -+ sqrt(r^2 - dy^2). Rows
+    // wholly inside (most rows of a cone seen side on) cost two evaluations and no root.
+    // (Forced inline: as a call it cost GCC a tenth of a short cone's time.)
+    const auto discInterval = [&](double r2, auto inside, int a, int b, int& first,
+                                  int& last) IRGS_ALWAYS_INLINE {
+      const bool a_in = inside(a);
+      const bool b_in = inside(b);
+      if (a_in && b_in) {
+        first = a;
+        last = b;
+        return;
       }
+      const double half_chord = std::sqrt(std::max(0.0, r2 - dy2)) * inv_res;
+      const int left_end = std::min(b, split - 1);
+      const int right_start = std::max(a, split);
+      first = a_in            ? a
+              : a <= left_end ? firstTrueNear(a, left_end,
+                                              ceilGuess(apex_col - half_chord, a, left_end), inside)
+                              : right_start;
+      last = b_in ? b
+             : right_start <= b
+                 ? lastTrueNear(right_start, b, floorGuess(apex_col + half_chord, right_start, b),
+                                inside)
+                 : left_end;
+    };
+    const auto insideStrict = [&](double r2) {
+      return [&dxOf, dy2, r2](int col) {
+        const double dx = dxOf(col);
+        return dx * dx + dy2 < r2;  // radius2(dx, dy), the same rounding
+      };
+    };
+    const auto insideClosed = [&](double r2) {
+      return [&dxOf, dy2, r2](int col) {
+        const double dx = dxOf(col);
+        return dx * dx + dy2 <= r2;
+      };
+    };
+
+    ConeRow out;
+    out.row = row;
+    if (outer_strict)
+      discInterval(outer2, insideStrict(outer2), wa, wb, out.col0, out.col1);
+    else
+      discInterval(outer2, insideClosed(outer2), wa, wb, out.col0, out.col1);
+    if (out.col0 > out.col1)
+      continue;
+    if (!cone.has_arc) {
+      out.free0 = out.col0;
+      out.free1 = out.col1;
+    } else if (dy2 < free2) {
+      // The free disc lies inside the outer one (r_free <= r_outer): search within the row's
+      // cone cells only.
+      discInterval(free2, insideStrict(free2), out.col0, out.col1, out.free0, out.free1);
     } else {
-      emit(fa, fb, ConeZone::kFree);
+      out.free0 = out.col0;
+      out.free1 = out.col0 - 1;
     }
+    rows.push_back(out);
+  }
+}
+
+void rasteriseCone(const SonarCone& cone, double resolution_m, std::vector<ConeSpan>& spans) {
+  spans.clear();
+  std::vector<ConeRow> rows;
+  scanConeRows(cone, resolution_m, rows);
+  for (const ConeRow& r : rows) {
+    if (!r.hasFree()) {
+      spans.push_back({r.row, r.col0, r.col1, ConeZone::kOccupied});
+      continue;
+    }
+    if (r.col0 < r.free0)
+      spans.push_back({r.row, r.col0, r.free0 - 1, ConeZone::kOccupied});
+    spans.push_back({r.row, r.free0, r.free1, ConeZone::kFree});
+    if (r.free1 < r.col1)
+      spans.push_back({r.row, r.free1 + 1, r.col1, ConeZone::kOccupied});
   }
 }
 

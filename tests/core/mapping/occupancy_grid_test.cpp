@@ -391,5 +391,37 @@ TEST(OccupancyGrid, FastAndNaiveAccumulateToTheSameGrid) {
   EXPECT_EQ(fast.takeDirtyRect(), naive.takeDirtyRect());
 }
 
+TEST(OccupancyGrid, CopiesKeepIntegratingLikeTheNaiveReference) {
+  // integrateSonar keeps scratch buffers (rows, a tile table) between calls: a copy must not
+  // share them, and cones of very different sizes one after another must not see stale entries.
+  std::mt19937_64 rng(99);
+  SonarInverseModel model;
+  OccupancyGrid fast(0.01), naive(0.01);
+  for (int i = 0; i < 40; ++i) {
+    const RandomCone c = randomCone(rng, i % 2 == 0 ? 3.0 : 0.2);
+    fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+    naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+  }
+  OccupancyGrid fast_copy = fast;
+  OccupancyGrid naive_copy = naive;
+  for (int i = 0; i < 40; ++i) {
+    const RandomCone c = randomCone(rng, 1.0);
+    const RandomCone d = randomCone(rng, 2.0);
+    fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+    naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+    fast_copy.integrateSonar(d.origin, d.heading_rad, d.beam_rad, d.range_m, d.echo, model);
+    naive_copy.integrateSonarNaive(d.origin, d.heading_rad, d.beam_rad, d.range_m, d.echo, model);
+  }
+  EXPECT_TRUE(fast == naive) << firstDifference(fast, naive);
+  EXPECT_TRUE(fast_copy == naive_copy) << firstDifference(fast_copy, naive_copy);
+  EXPECT_FALSE(fast == fast_copy);
+  OccupancyGrid assigned(0.01);
+  assigned = fast_copy;
+  const RandomCone e = randomCone(rng, 1.0);
+  assigned.integrateSonar(e.origin, e.heading_rad, e.beam_rad, e.range_m, e.echo, model);
+  naive_copy.integrateSonarNaive(e.origin, e.heading_rad, e.beam_rad, e.range_m, e.echo, model);
+  EXPECT_TRUE(assigned == naive_copy) << firstDifference(assigned, naive_copy);
+}
+
 }  // namespace
 }  // namespace irgs
