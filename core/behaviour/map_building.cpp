@@ -14,6 +14,11 @@ namespace irgs {
 namespace {
 
 constexpr double kApproachLimit_m = 0.8;  // drive at most this far toward a suspected obstacle
+// Learned odometry heading error: bounds (0.57 deg/m; 2 % of the angle turned) and the
+// regularisation of the least-squares fit (in m^2 and rad^2: a weak pull towards zero).
+constexpr double kMaxDrift_radpm = 0.01;
+constexpr double kMaxTurnScaleError = 0.02;
+constexpr double kDriftRegularisation = 1.0;
 
 double signedArea(const std::vector<Vec2>& poly) {
   double a = 0.0;
@@ -73,6 +78,13 @@ std::optional<std::string> mapBuildingConfigError(const MapBuildingConfig& c) {
     return "clearance_margin_m must be >= 0";
   if (!positive(c.travel_speed_mps) || !positive(c.max_time_s) || !positive(c.max_distance_m))
     return "travel speed and budgets must be > 0";
+  if (!std::isfinite(c.heading_gate_base_rad) || c.heading_gate_base_rad < 0.0 ||
+      !std::isfinite(c.heading_gate_per_m) || c.heading_gate_per_m < 0.0 ||
+      !std::isfinite(c.heading_gate_per_turn) || c.heading_gate_per_turn < 0.0 ||
+      !std::isfinite(c.heading_confirm_rad) || c.heading_confirm_rad < 0.0)
+    return "heading gate and confirmation tolerances must be finite and >= 0";
+  if (!positive(c.position_gate_m))
+    return "position_gate_m must be > 0";
   if (const auto err = sonarInverseModelError(c.sonar_model))
     return "sonar_model: " + *err;
   return std::nullopt;
@@ -351,12 +363,15 @@ std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(c
     const int c = static_cast<int>(k % W), r = static_cast<int>(k / W);
     const Vec2 p = centre(c, r);
     const bool inside = insidePolygon(outline_->indices, p);
-    if (inside && d > 0 && !listed(p)) {
+    // Beyond the outline (another room through a doorway the wall follower passed as a gap,
+    // or space the first loop cut off) only frontiers count: obstacles there are mapped as
+    // they are passed, not circumnavigated.
+    if ((inside || config_.explore_beyond_outline) && d > 0 && !listed(p)) {
       Target t;
       t.position = p;
       // An unvisited obstacle within reach of this cell?
       bool found = false;
-      for (int dr = -near; dr <= near && !found; ++dr)
+      for (int dr = -near; dr <= near && inside && !found; ++dr)
         for (int dc = -near; dc <= near && !found; ++dc) {
           const int x = c + dc, y = r + dr;
           if (x < 0 || y < 0 || x >= W || y >= H || state[at(x, y)] != kOcc)
@@ -376,7 +391,7 @@ std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(c
           for (int dc = -2; dc <= 2; ++dc) {
             const int x = c + dc, y = r + dr;
             if (x >= 0 && y >= 0 && x < W && y < H && state[at(x, y)] == kUnknown &&
-                insidePolygon(outline_->indices, centre(x, y)))
+                (config_.explore_beyond_outline || insidePolygon(outline_->indices, centre(x, y))))
               ++unknown;
           }
         found = unknown >= 4;
@@ -490,6 +505,7 @@ VelocityCommand MapBuildingBehaviour::interior(const TelemetrySample& sample, co
 void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
   if (config_.heading_lattice_rad <= 0.0 || !follower_.following()) {
     wall_points_.clear();
+    pending_error_.reset();
     return;
   }
   // Echo points of the wall-side sonars in the revised frame. Fitting a line through a metre of
@@ -530,30 +546,122 @@ void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
                        wall_points_.begin() + static_cast<std::ptrdiff_t>(wall_points_.size() / 2));
     return;
   }
+  // Extent of the fitted wall along its direction, relative to the mean (for the landmarks).
+  double along_min = 0.0, along_max = 0.0;
+  for (const Vec2& p : wall_points_) {
+    const double a = (p - mean).dot(Vec2(std::cos(dir), std::sin(dir)));
+    along_min = std::min(along_min, a);
+    along_max = std::max(along_max, a);
+  }
   wall_points_.clear();
   const double error = wrapAngle(quantiseAngle(dir, config_.heading_lattice_rad) - dir);
   // Obstacles may have any shape: only a face already close to the lattice counts.
   const double capture = phase_ == MapBuildingPhase::kObstacle
                              ? config_.obstacle_heading_capture_rad
                              : config_.heading_capture_rad;
-  if (std::abs(error) <= capture) {
-    heading_offset_ = wrapAngle(heading_offset_ + error);
-    // Rotate the pose about the fitted wall's centre, so the wall the robot is beside stays
-    // where it was mapped and only the heading (and what follows) is revised.
-    const Vec2 rel = pose_.position() - mean;
-    const double c = std::cos(error), s = std::sin(error);
-    pose_.x = mean.x() + c * rel.x() - s * rel.y();
-    pose_.y = mean.y() + s * rel.x() + c * rel.y();
-    pose_.theta = wrapAngle(pose_.theta + error);
-    ++heading_corrections_;
-    // The revisions also calibrate the odometry: a heading error that grows with the distance
-    // driven (unequal wheel radii) is learned as a drift rate and removed between revisions
-    // (interior travel, obstacle faces off the lattice).
-    const double since = distance_m_ - distance_at_correction_;
-    if (since >= 1.0)
-      drift_radpm_ = std::clamp(drift_radpm_ + 0.5 * error / since, -0.02, 0.02);
-    distance_at_correction_ = distance_m_;
+  if (std::abs(error) > capture) {
+    pending_error_.reset();
+    return;
   }
+  const double since = distance_m_ - distance_at_correction_;
+  const double gate = config_.heading_gate_base_rad + config_.heading_gate_per_m * since +
+                      config_.heading_gate_per_turn * turned_since_correction_rad_;
+  const bool confirmed =
+      pending_error_ && std::abs(error - *pending_error_) <= config_.heading_confirm_rad;
+  if (std::abs(error) > gate && !confirmed) {
+    // Larger than the drift can explain: one line is not enough. On the outline the next fit
+    // may confirm it; an obstacle face never does on its own.
+    ++heading_rejections_;
+    if (phase_ == MapBuildingPhase::kObstacle)
+      pending_error_.reset();
+    else
+      pending_error_ = error;
+    return;
+  }
+  pending_error_.reset();
+  heading_offset_ = wrapAngle(heading_offset_ + error);
+  // Rotate the pose about the fitted wall's centre, so the wall the robot is beside stays
+  // where it was mapped and only the heading (and what follows) is revised.
+  const Vec2 rel = pose_.position() - mean;
+  const double c = std::cos(error), s = std::sin(error);
+  pose_.x = mean.x() + c * rel.x() - s * rel.y();
+  pose_.y = mean.y() + s * rel.x() + c * rel.y();
+  pose_.theta = wrapAngle(pose_.theta + error);
+  ++heading_corrections_;
+  // The revisions also calibrate the odometry. Between two revisions the raw odometry heading
+  // error grew by (error + what the model already applied); unequal wheel radii make it grow
+  // with the distance driven, a wrong wheelbase with the signed angle turned:
+  //   total_i = a * distance_i + k * turned_i   (a rad/m, k rad/rad)
+  // a and k are the least-squares fit over all accepted revisions (lightly regularised and
+  // bounded, so a few revisions cannot teach an absurd rate).
+  const double total = error + applied_since_correction_rad_;
+  const double d = since, t = signed_turn_since_correction_rad_;
+  drift_normal_[0] += d * d;
+  drift_normal_[1] += d * t;
+  drift_normal_[2] += t * t;
+  drift_rhs_[0] += d * total;
+  drift_rhs_[1] += t * total;
+  const double n00 = drift_normal_[0] + kDriftRegularisation, n01 = drift_normal_[1],
+               n11 = drift_normal_[2] + kDriftRegularisation;
+  const double normal_det = n00 * n11 - n01 * n01;
+  if (normal_det > 0.0) {
+    drift_radpm_ = std::clamp((n11 * drift_rhs_[0] - n01 * drift_rhs_[1]) / normal_det,
+                              -kMaxDrift_radpm, kMaxDrift_radpm);
+    turn_scale_error_ = std::clamp((n00 * drift_rhs_[1] - n01 * drift_rhs_[0]) / normal_det,
+                                   -kMaxTurnScaleError, kMaxTurnScaleError);
+  }
+  applied_since_correction_rad_ = 0.0;
+  signed_turn_since_correction_rad_ = 0.0;
+  distance_at_correction_ = distance_m_;
+  turned_since_correction_rad_ = 0.0;
+  reviseAcrossWall(dir + error, mean, along_min, along_max);
+}
+
+void MapBuildingBehaviour::reviseAcrossWall(double direction, const Vec2& mean, double along_min,
+                                            double along_max) {
+  // Lines are undirected: keep the direction in [0, pi).
+  double q = std::fmod(direction, kPi);
+  if (q < 0.0)
+    q += kPi;
+  if (q >= kPi - 1e-9)
+    q = 0.0;
+  const Vec2 t(std::cos(q), std::sin(q));
+  const Vec2 n(-t.y(), t.x());
+  WallLandmark seen{q, n.dot(mean), t.dot(mean) + along_min, t.dot(mean) + along_max};
+  if (phase_ == MapBuildingPhase::kFollowWall && !outline_) {
+    // The first loop round the room has the least drift: its walls are the reference.
+    landmarks_.push_back(seen);
+    return;
+  }
+  if (!config_.position_revision)
+    return;
+  // The same wall seen again (same direction, overlapping, offset within the gate) moves the
+  // pose across it; an ambiguous match (another parallel landmark near) moves nothing.
+  const WallLandmark* match = nullptr;
+  for (const WallLandmark& w : landmarks_) {
+    if (std::abs(wrapAngle(2.0 * (w.direction - q))) > 1e-6)
+      continue;
+    const double overlap =
+        std::min(w.along_max, seen.along_max) - std::max(w.along_min, seen.along_min);
+    if (overlap < 0.3)
+      continue;
+    const double off = std::abs(w.offset - seen.offset);
+    if (off < config_.position_gate_m && (!match || off < std::abs(match->offset - seen.offset)))
+      match = &w;
+  }
+  if (!match)
+    return;
+  // Several landmarks on one line (pieces of one wall) agree; parallel walls near do not.
+  for (const WallLandmark& w : landmarks_)
+    if (std::abs(wrapAngle(2.0 * (w.direction - q))) <= 1e-6 &&
+        std::abs(w.offset - match->offset) > 0.05 &&
+        std::abs(w.offset - seen.offset) < 2.0 * config_.position_gate_m &&
+        std::min(w.along_max, seen.along_max) - std::max(w.along_min, seen.along_min) >= 0.3)
+      return;
+  const double shift = match->offset - seen.offset;
+  pose_.x += shift * n.x();
+  pose_.y += shift * n.y();
+  ++position_corrections_;
 }
 
 VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
@@ -570,9 +678,14 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
   // Carry the odometry increment (body frame of the previous odometry pose) onto the revised
   // pose: the heading revisions rotate everything driven after them.
   const Vec2 step_body = last_odometry_.toBody(odo.position());
-  const double step_turn =
-      wrapAngle(odo.theta - last_odometry_.theta) + drift_radpm_ * step_body.norm();
+  const double odo_turn = wrapAngle(odo.theta - last_odometry_.theta);
+  // The learned error model (fitWallHeading) removed from every step.
+  const double model = drift_radpm_ * step_body.norm() + turn_scale_error_ * odo_turn;
+  const double step_turn = odo_turn + model;
   pose_ = pose_.compose({step_body.x(), step_body.y(), step_turn});
+  turned_since_correction_rad_ += std::abs(odo_turn);
+  signed_turn_since_correction_rad_ += odo_turn;
+  applied_since_correction_rad_ += model;
   last_odometry_ = odo;
   TelemetrySample sample = raw;
   sample.odometry_pose = pose_;

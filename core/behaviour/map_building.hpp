@@ -37,6 +37,15 @@ struct MapBuildingConfig {
   double explore_cell_m = 0.1;       // coarse cell for interior targets and planning
   double clearance_margin_m = 0.06;  // added to the body radius when planning
   double travel_speed_mps = 0.2;
+  // Frontiers (reachable free cells next to unknown space) anywhere, not only inside the first
+  // closed outline: multi-room maps whose first loop did not enclose every room.
+  bool explore_beyond_outline = true;
+  // Position revision across walls: straight-wall fits on the first loop round the room are
+  // kept as reference lines; a later fit on the same line (same lattice direction, overlapping,
+  // offset within position_gate_m, no other parallel reference near) moves the pose across
+  // the wall by the offset. Needs heading_lattice_rad > 0.
+  bool position_revision = true;
+  double position_gate_m = 0.3;
   double max_time_s = 3600.0;      // budget (time since the first sample)
   double max_distance_m = 1500.0;  // budget (odometry path length)
   SonarInverseModel sonar_model;
@@ -48,8 +57,20 @@ struct MapBuildingConfig {
   // is corrected by the difference. 0 switches it off (rooms with arbitrary wall directions).
   double heading_lattice_rad = degToRad(15.0);
   double heading_capture_rad = degToRad(7.0);
-  double obstacle_heading_capture_rad = degToRad(2.5);  // faces of obstacles met inside
+  double obstacle_heading_capture_rad = degToRad(1.5);  // faces of obstacles met inside
   double heading_fit_length_m = 0.8;
+  // A single wrong line (an obstacle face off the lattice, a loop slipping onto a nearby wall)
+  // must not rotate the map. With the learned drift removed, the heading error left since the
+  // last revision is small and grows with distance and turning (wheel radii, wheelbase), so a
+  // correction is accepted at once only within
+  //   heading_gate_base_rad + heading_gate_per_m * distance + heading_gate_per_turn * |turned|
+  // since the last accepted one. A larger one (still within the capture) on the outline is
+  // accepted only when the next straight-wall fit asks for the same correction (within
+  // heading_confirm_rad); on obstacle faces it is rejected.
+  double heading_gate_base_rad = degToRad(1.0);
+  double heading_gate_per_m = degToRad(0.3);
+  double heading_gate_per_turn = 0.006;  // rad per rad turned (wheelbase error ~0.5 %)
+  double heading_confirm_rad = degToRad(1.0);
 };
 
 // What is wrong with the config, or nothing.
@@ -101,6 +122,12 @@ class MapBuildingBehaviour : public Behaviour {
   const Pose2& pose() const { return pose_; }
   double headingCorrection_rad() const { return heading_offset_; }
   int headingCorrections() const { return heading_corrections_; }
+  int positionCorrections() const { return position_corrections_; }
+  // Straight-wall fits whose correction disagreed with the drift expected since the last one.
+  int headingRejections() const { return heading_rejections_; }
+  // The learned odometry heading error: per metre driven and per radian turned.
+  double learnedDrift_radpm() const { return drift_radpm_; }
+  double learnedTurnScaleError() const { return turn_scale_error_; }
 
  private:
   enum class Move { kNone, kTurn, kDrive, kFaceObstacle, kApproach, kBackUp, kPause };
@@ -146,8 +173,25 @@ class MapBuildingBehaviour : public Behaviour {
   double drift_radpm_ = 0.0;  // learned heading drift per metre driven
   double distance_at_correction_ = 0.0;
   int heading_corrections_ = 0;
+  int heading_rejections_ = 0;
+  double turned_since_correction_rad_ = 0.0;       // |angle| turned (odometry)
+  double signed_turn_since_correction_rad_ = 0.0;  // signed angle turned (odometry)
+  double applied_since_correction_rad_ = 0.0;      // heading the model added since
+  double turn_scale_error_ = 0.0;                  // learned heading error per radian turned
+  double drift_normal_[3] = {0.0, 0.0, 0.0};       // least-squares sums d*d, d*t, t*t
+  double drift_rhs_[2] = {0.0, 0.0};               // d*total, t*total
+  std::optional<double> pending_error_;            // a large correction waiting for confirmation
   std::vector<Vec2> wall_points_;
   void fitWallHeading(const TelemetrySample& sample);
+  struct WallLandmark {
+    double direction = 0.0;  // [0, pi), on the lattice
+    double offset = 0.0;     // along the normal (-sin, cos) of the direction, m
+    double along_min = 0.0;  // extent along the direction, m
+    double along_max = 0.0;
+  };
+  std::vector<WallLandmark> landmarks_;
+  int position_corrections_ = 0;
+  void reviseAcrossWall(double direction, const Vec2& mean, double along_min, double along_max);
 
   // Scan.
   double scan_start_heading_ = 0.0;
