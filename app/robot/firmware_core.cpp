@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "comms/mavlink/messages.hpp"
+#include "core/behaviour/wall_follower.hpp"
 
 namespace irgs::app {
 
@@ -51,6 +52,27 @@ constexpr std::uint8_t kSeverityCritical = static_cast<std::uint8_t>(mav::MavSev
 constexpr std::uint8_t kSeverityWarning = static_cast<std::uint8_t>(mav::MavSeverity::kWarning);
 constexpr std::uint8_t kSeverityInfo = static_cast<std::uint8_t>(mav::MavSeverity::kInfo);
 
+constexpr std::uint8_t result(mav::MavResult r) {
+  return static_cast<std::uint8_t>(r);
+}
+
+// MAV_SYS_STATUS_SENSOR bits (common.xml).
+constexpr std::uint32_t kSensorGyro = 1u;
+constexpr std::uint32_t kSensorAccel = 2u;
+constexpr std::uint32_t kSensorMotorOutputs = 32768u;
+constexpr std::uint32_t kSensorBattery = 33554432u;
+constexpr std::uint32_t kSensorProximity = 67108864u;
+
+constexpr double kStandardGravity = 9.80665;  // m/s^2
+
+std::int16_t toInt16(double value) {
+  return static_cast<std::int16_t>(std::clamp(std::lround(value), -32767L, 32767L));
+}
+
+double periodFromRate(double hz) {
+  return hz > 0.0 ? 1.0 / hz : 0.0;
+}
+
 }  // namespace
 
 FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base) {
@@ -63,6 +85,8 @@ FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base) {
   base.send_sonar_scan = true;
   base.send_distance_sensor = false;
   base.send_encoder_ticks = false;
+  base.imu_period_s = 0.0;
+  base.status_period_s = 5.0;
   return base;
 }
 
@@ -70,18 +94,67 @@ FirmwareCore::FirmwareCore(Simulator simulator, FirmwareConfig config)
     : sim_(std::move(simulator)),
       config_(config),
       encoder_(config.system_id, config.component_id),
+      mission_store_(config.system_id, config.component_id),
       fresh_sonar_(sim_.profile().sonars.size()),
-      last_sonar_(sim_.profile().sonars.size()) {
+      last_sonar_(sim_.profile().sonars.size()),
+      imu_rng_(config.imu_seed) {
   if (!(config_.teleop_timeout_s > 0.0) || !(config_.gcs_timeout_s > 0.0))
     throw std::invalid_argument("FirmwareConfig: timeouts must be positive");
   if (!(config_.heartbeat_period_s > 0.0) || !(config_.odometry_period_s >= 0.0) ||
-      !(config_.sonar_period_s >= 0.0) || !(config_.contact_period_s >= 0.0))
+      !(config_.sonar_period_s >= 0.0) || !(config_.contact_period_s >= 0.0) ||
+      !(config_.imu_period_s >= 0.0) || !(config_.status_period_s >= 0.0))
     throw std::invalid_argument("FirmwareConfig: periods must be non-negative (heartbeat > 0)");
+  if (!(config_.gyro_noise_radps >= 0.0) || !(config_.accel_noise_mps2 >= 0.0) ||
+      !(config_.battery_capacity_ah > 0.0) || !(config_.battery_full_v > config_.battery_empty_v) ||
+      !(config_.battery_empty_v > 0.0) || !(config_.battery_idle_a >= 0.0) ||
+      !(config_.battery_a_per_mps >= 0.0) || !(config_.battery_a_per_radps >= 0.0))
+    throw std::invalid_argument("FirmwareConfig: IMU noise and battery model out of range");
   for (std::size_t i = 0; i < last_sonar_.size(); ++i) {
     last_sonar_[i].sensor = static_cast<int>(i);
   }
   const double t = sim_.time_s();
-  next_heartbeat_s_ = next_odometry_s_ = next_sonar_s_ = next_contact_s_ = t;
+  next_heartbeat_s_ = t;
+  auto stream = [&](std::uint32_t id, ParamId group, bool on, double period) {
+    const double p = on ? period : 0.0;
+    streams_.push_back({id, group, p, p, t});
+  };
+  const double pose = config_.odometry_period_s;
+  stream(mav::LocalPositionNed::kId, ParamId::kRatePose, config_.send_local_position, pose);
+  stream(mav::Attitude::kId, ParamId::kRatePose, config_.send_local_position, pose);
+  stream(mav::Odometry::kId, ParamId::kRatePose, config_.send_odometry, pose);
+  stream(mav::IrgsPose2d::kId, ParamId::kRatePose, config_.send_pose_2d, pose);
+  stream(mav::IrgsEncoderTicks::kId, ParamId::kRatePose, config_.send_encoder_ticks, pose);
+  stream(mav::DistanceSensor::kId, ParamId::kRateSonar, config_.send_distance_sensor,
+         config_.sonar_period_s);
+  stream(mav::IrgsSonarScan::kId, ParamId::kRateSonar,
+         config_.send_sonar_scan && !sim_.profile().sonars.empty(), config_.sonar_period_s);
+  stream(mav::IrgsContact::kId, ParamId::kRateContact, true, config_.contact_period_s);
+  stream(mav::ScaledImu::kId, ParamId::kRateImu, true, config_.imu_period_s);
+  stream(mav::SysStatus::kId, ParamId::kRateStatus, true, config_.status_period_s);
+
+  // Parameters mirror the config; the speed limits are capped by the robot profile.
+  const MotionLimits& limits = sim_.profile().limits;
+  params_.setRange(ParamId::kMaxSpeed, std::min(0.01, limits.max_speed_mps), limits.max_speed_mps);
+  params_.setRange(ParamId::kMaxTurnRate, std::min(0.05, limits.max_turn_rate_radps),
+                   limits.max_turn_rate_radps);
+  params_.setInitial(ParamId::kTeleopTimeout, config_.teleop_timeout_s);
+  params_.setInitial(ParamId::kHbTimeout, config_.gcs_timeout_s);
+  params_.setInitial(ParamId::kMaxSpeed, limits.max_speed_mps);
+  params_.setInitial(ParamId::kMaxTurnRate, limits.max_turn_rate_radps);
+  // A configured timeout outside the parameter range (command line) is kept as configured.
+  if (params_.get(ParamId::kTeleopTimeout) != config_.teleop_timeout_s) {
+    params_.setRange(ParamId::kTeleopTimeout,
+                     std::min(params_.min(ParamId::kTeleopTimeout), config_.teleop_timeout_s),
+                     std::max(params_.max(ParamId::kTeleopTimeout), config_.teleop_timeout_s));
+    params_.setInitial(ParamId::kTeleopTimeout, config_.teleop_timeout_s);
+  }
+  if (params_.get(ParamId::kHbTimeout) != config_.gcs_timeout_s) {
+    params_.setRange(ParamId::kHbTimeout,
+                     std::min(params_.min(ParamId::kHbTimeout), config_.gcs_timeout_s),
+                     std::max(params_.max(ParamId::kHbTimeout), config_.gcs_timeout_s));
+    params_.setInitial(ParamId::kHbTimeout, config_.gcs_timeout_s);
+  }
+  syncRateParams();
 }
 
 template <class M>
@@ -130,31 +203,59 @@ void FirmwareCore::receive(const mav::Frame& frame, double now_s) {
       warned_no_gcs_ = true;
       return;
     }
-    const MotionLimits& limits = sim_.profile().limits;
-    teleop_.linear_mps = axis(mc->x) * limits.max_speed_mps;
-    // MAVLink r > 0 turns clockwise (right); our omega is counter-clockwise positive.
-    teleop_.angular_radps = -axis(mc->r) * limits.max_turn_rate_radps;
+    teleop_forward_ = axis(mc->x);
+    teleop_yaw_cw_ = axis(mc->r);  // MAVLink r > 0 turns clockwise (right)
     last_teleop_s_ = now_s;
-    if (teleop_.linear_mps != 0.0 || teleop_.angular_radps != 0.0)
+    if (teleop_forward_ != 0.0 || teleop_yaw_cw_ != 0.0)
       endBehaviour(mav::IrgsBehaviourState::kAborted);  // the operator takes over
   } else if (auto cmd = frame.as<mav::CommandLong>()) {
     if (cmd->target_system != 0 && cmd->target_system != config_.system_id)
       return;
     handleCommand(*cmd);
+  } else if (auto sync = frame.as<mav::Timesync>()) {
+    // A request (tc1 = 0) addressed to us or broadcast: answer with our clock [ns since boot],
+    // ts1 mirrored, addressed to the requester (the GCS computes RTT = now - ts1).
+    if (sync->tc1 == 0 && (sync->target_system == 0 || sync->target_system == config_.system_id)) {
+      mav::Timesync reply;
+      reply.tc1 = static_cast<std::int64_t>(std::llround(std::max(now_s, 1e-9) * 1e9));
+      reply.ts1 = sync->ts1;
+      reply.target_system = frame.system_id;
+      reply.target_component = frame.component_id;
+      send(reply);
+    }
+  } else if (frame.message_id == mav::ParamRequestList::kId ||
+             frame.message_id == mav::ParamRequestRead::kId ||
+             frame.message_id == mav::ParamSet::kId) {
+    handleParam(frame);
+  } else {
+    handleMission(frame, now_s);
   }
+}
+
+VelocityCommand FirmwareCore::teleopCommand() const {
+  // Our omega is counter-clockwise positive, MANUAL_CONTROL r clockwise positive.
+  return {teleop_forward_ * maxSpeed(), -teleop_yaw_cw_ * maxTurnRate()};
+}
+
+double FirmwareCore::maxSpeed() const {
+  return params_.get(ParamId::kMaxSpeed);
+}
+
+double FirmwareCore::maxTurnRate() const {
+  return params_.get(ParamId::kMaxTurnRate);
 }
 
 void FirmwareCore::handleCommand(const mav::CommandLong& command) {
   mav::CommandAck ack;
   ack.command = command.command;
-  ack.result = static_cast<std::uint8_t>(mav::MavResult::kUnsupported);
+  ack.result = result(mav::MavResult::kUnsupported);
   switch (static_cast<mav::MavCmd>(command.command)) {
     case mav::MavCmd::kIrgsStop:
       endBehaviour(mav::IrgsBehaviourState::kAborted);
-      teleop_ = {};
+      teleop_forward_ = teleop_yaw_cw_ = 0.0;
       last_teleop_s_.reset();
       sim_.setCommand({});  // controlled stop: decelerate at the profile's limits
-      ack.result = static_cast<std::uint8_t>(mav::MavResult::kAccepted);
+      ack.result = result(mav::MavResult::kAccepted);
       sendStatus(kSeverityInfo, "stop");
       break;
     case mav::MavCmd::kIrgsEmergencyStop:
@@ -166,16 +267,248 @@ void FirmwareCore::handleCommand(const mav::CommandLong& command) {
         last_teleop_s_.reset();  // motion needs a fresh command after a release
         sendStatus(kSeverityWarning, "emergency stop released");
       }
-      ack.result = static_cast<std::uint8_t>(mav::MavResult::kAccepted);
+      ack.result = result(mav::MavResult::kAccepted);
       break;
     case mav::MavCmd::kIrgsMoveDistance:
     case mav::MavCmd::kIrgsTurnAngle:
       ack.result = startBehaviour(command);
       break;
+    case mav::MavCmd::kIrgsFollowWall:
+      ack.result = startWallFollow(command);
+      break;
+    case mav::MavCmd::kMissionStart:
+      ack.result = startMission(command);
+      break;
+    case mav::MavCmd::kSetMessageInterval:
+      ack.result = setMessageInterval(command);
+      break;
     default:
-      break;  // wall following, parameters, missions: not implemented by this firmware yet
+      break;  // anything else: MAV_RESULT_UNSUPPORTED
   }
   send(ack);
+}
+
+// ---- Parameters ------------------------------------------------------------------------------
+
+void FirmwareCore::sendParam(ParamId id) {
+  mav::ParamValue v;
+  v.param_id = paramIdField(paramSpecs()[static_cast<std::size_t>(id)].name);
+  v.param_value = static_cast<float>(params_.get(id));
+  v.param_type = static_cast<std::uint8_t>(mav::MavParamType::kReal32);
+  v.param_count = static_cast<std::uint16_t>(ParamTable::size());
+  v.param_index = static_cast<std::uint16_t>(id);
+  send(v);
+}
+
+void FirmwareCore::handleParam(const mav::Frame& frame) {
+  auto addressed = [&](std::uint8_t system, std::uint8_t component) {
+    return (system == 0 || system == config_.system_id) &&
+           (component == 0 || component == config_.component_id);
+  };
+  if (auto list = frame.as<mav::ParamRequestList>()) {
+    if (!addressed(list->target_system, list->target_component))
+      return;
+    for (std::size_t i = 0; i < ParamTable::size(); ++i)
+      sendParam(static_cast<ParamId>(i));
+  } else if (auto read = frame.as<mav::ParamRequestRead>()) {
+    if (!addressed(read->target_system, read->target_component))
+      return;
+    std::optional<ParamId> id;
+    if (read->param_index >= 0) {
+      if (static_cast<std::size_t>(read->param_index) < ParamTable::size())
+        id = static_cast<ParamId>(read->param_index);
+    } else {
+      id = findParam(paramIdToString(read->param_id));
+    }
+    if (!id) {
+      // The parameter protocol has no negative reply; say it for the operator.
+      sendStatus(kSeverityWarning,
+                 "no parameter " + (read->param_index >= 0 ? "#" + std::to_string(read->param_index)
+                                                           : paramIdToString(read->param_id)));
+      return;
+    }
+    sendParam(*id);
+  } else if (auto set = frame.as<mav::ParamSet>()) {
+    if (!addressed(set->target_system, set->target_component))
+      return;
+    const std::string name = paramIdToString(set->param_id);
+    const std::optional<ParamId> id = findParam(name);
+    if (!id) {
+      sendStatus(kSeverityWarning, "no parameter " + name);
+      return;
+    }
+    if (set->param_type != 0 &&
+        set->param_type != static_cast<std::uint8_t>(mav::MavParamType::kReal32)) {
+      sendStatus(kSeverityWarning, name + ": must be sent as REAL32");
+      sendParam(*id);  // the unchanged value: the spec's way to refuse
+      return;
+    }
+    if (auto error = params_.set(*id, static_cast<double>(set->param_value))) {
+      sendStatus(kSeverityWarning, *error);
+    } else {
+      applyParam(*id);
+    }
+    sendParam(*id);
+  }
+}
+
+void FirmwareCore::applyParam(ParamId id) {
+  const double value = params_.get(id);
+  switch (id) {
+    case ParamId::kTeleopTimeout:
+      config_.teleop_timeout_s = value;
+      break;
+    case ParamId::kHbTimeout:
+      config_.gcs_timeout_s = value;
+      break;
+    case ParamId::kMaxSpeed:
+    case ParamId::kMaxTurnRate:
+      // Read at every step (teleop, behaviours); a running behaviour slows down at once.
+      behaviour_.speed = std::min(
+          behaviour_.speed, behaviour_.kind == BehaviourKind::kTurn ? maxTurnRate() : maxSpeed());
+      break;
+    case ParamId::kRatePose:
+    case ParamId::kRateSonar:
+    case ParamId::kRateContact:
+    case ParamId::kRateImu:
+    case ParamId::kRateStatus: {
+      const double period = periodFromRate(value);
+      bool any_on = false;
+      for (const Stream& st : streams_)
+        any_on = any_on || (st.group == id && st.period_s > 0.0);
+      // Messages of the group that are on get the new rate; with the group off, the ones the
+      // configuration enables come back.
+      for (Stream& st : streams_) {
+        if (st.group != id)
+          continue;
+        if (period == 0.0)
+          st.period_s = 0.0;
+        else if (st.period_s > 0.0 || (!any_on && st.default_period_s > 0.0))
+          st.period_s = period;
+        st.next_s = sim_.time_s();
+      }
+      break;
+    }
+    case ParamId::kCount:
+      break;
+  }
+}
+
+FirmwareCore::Stream* FirmwareCore::findStream(std::uint32_t message_id) {
+  for (Stream& st : streams_)
+    if (st.message_id == message_id)
+      return &st;
+  return nullptr;
+}
+
+const FirmwareCore::Stream* FirmwareCore::findStream(std::uint32_t message_id) const {
+  for (const Stream& st : streams_)
+    if (st.message_id == message_id)
+      return &st;
+  return nullptr;
+}
+
+std::optional<double> FirmwareCore::messagePeriod(std::uint32_t message_id) const {
+  if (message_id == mav::Heartbeat::kId)
+    return config_.heartbeat_period_s;
+  if (const Stream* st = findStream(message_id))
+    return st->period_s;
+  return std::nullopt;
+}
+
+// The SR_* parameters show the rate of the first message of their group that is on.
+void FirmwareCore::syncRateParams() {
+  for (ParamId group : {ParamId::kRatePose, ParamId::kRateSonar, ParamId::kRateContact,
+                        ParamId::kRateImu, ParamId::kRateStatus}) {
+    double hz = 0.0;
+    for (const Stream& st : streams_) {
+      if (st.group == group && st.period_s > 0.0) {
+        hz = 1.0 / st.period_s;
+        break;
+      }
+    }
+    if (hz > params_.max(group))
+      params_.setRange(group, params_.min(group), hz);
+    params_.setInitial(group, hz);
+  }
+}
+
+// MAV_CMD_SET_MESSAGE_INTERVAL: param1 message id, param2 interval [us] (-1 off, 0 default).
+std::uint8_t FirmwareCore::setMessageInterval(const mav::CommandLong& command) {
+  const double id = static_cast<double>(command.param1);
+  const double interval_us = static_cast<double>(command.param2);
+  if (!std::isfinite(id) || !std::isfinite(interval_us) || id < 0.0 || id != std::floor(id) ||
+      interval_us < -1.0)
+    return result(mav::MavResult::kDenied);
+  const auto message_id = static_cast<std::uint32_t>(id);
+  if (message_id == mav::Heartbeat::kId)
+    return result(mav::MavResult::kDenied);  // the link state machine depends on 1 Hz
+  Stream* st = findStream(message_id);
+  if (st == nullptr)
+    return result(mav::MavResult::kUnsupported);
+  if (interval_us == -1.0) {
+    st->period_s = 0.0;
+  } else if (interval_us == 0.0) {
+    st->period_s = st->default_period_s;
+  } else {
+    // At most once per simulation step (the firmware's main loop).
+    st->period_s = std::max(interval_us * 1e-6, sim_.config().dt_s);
+  }
+  st->next_s = sim_.time_s();
+  syncRateParams();
+  return result(mav::MavResult::kAccepted);
+}
+
+// ---- Missions ---------------------------------------------------------------------------------
+
+void FirmwareCore::sendMissionReply(const MissionReply& reply) {
+  if (reply.request)
+    send(*reply.request);
+  if (reply.item)
+    send(*reply.item);
+  if (reply.count)
+    send(*reply.count);
+  if (reply.ack)
+    send(*reply.ack);
+  if (!reply.status.empty())
+    sendStatus(reply.warning ? kSeverityWarning : kSeverityInfo, reply.status);
+}
+
+void FirmwareCore::handleMission(const mav::Frame& frame, double now_s) {
+  auto addressed = [&](std::uint8_t system) { return system == 0 || system == config_.system_id; };
+  const std::uint8_t sys = frame.system_id;
+  const std::uint8_t comp = frame.component_id;
+  if (auto count = frame.as<mav::MissionCount>()) {
+    if (!addressed(count->target_system))
+      return;
+    if (behaviour_.kind == BehaviourKind::kMission &&
+        behaviour_.state == mav::IrgsBehaviourState::kRunning) {
+      mav::MissionAck ack;
+      ack.target_system = sys;
+      ack.target_component = comp;
+      ack.type = static_cast<std::uint8_t>(mav::MavMissionResult::kDenied);
+      ack.mission_type = count->mission_type;
+      send(ack);
+      sendStatus(kSeverityWarning, "mission upload refused: a mission is running");
+      return;
+    }
+    sendMissionReply(mission_store_.onCount(*count, sys, comp, now_s));
+  } else if (auto item = frame.as<mav::MissionItemInt>()) {
+    if (addressed(item->target_system))
+      sendMissionReply(mission_store_.onItem(*item, sys, comp, now_s));
+  } else if (auto list = frame.as<mav::MissionRequestList>()) {
+    if (addressed(list->target_system))
+      sendMissionReply(mission_store_.onRequestList(*list, sys, comp));
+  } else if (auto request = frame.as<mav::MissionRequestInt>()) {
+    if (addressed(request->target_system))
+      sendMissionReply(mission_store_.onRequest(*request, sys, comp));
+  } else if (auto clear = frame.as<mav::MissionClearAll>()) {
+    if (!addressed(clear->target_system))
+      return;
+    if (behaviour_.kind == BehaviourKind::kMission)
+      endBehaviour(mav::IrgsBehaviourState::kAborted);
+    sendMissionReply(mission_store_.onClearAll(*clear, sys, comp));
+  }
 }
 
 void FirmwareCore::safetyStop(const std::string& reason) {
@@ -210,7 +543,7 @@ void FirmwareCore::applySafety() {
     safetyStop("GCS heartbeat lost: motors stopped");
   } else if (teleop_was_active_ && !s.teleop_active && s.gcs_alive && !estop_ &&
              behaviour_.state != mav::IrgsBehaviourState::kRunning) {
-    if (teleop_.linear_mps != 0.0 || teleop_.angular_radps != 0.0)
+    if (teleop_forward_ != 0.0 || teleop_yaw_cw_ != 0.0)
       safetyStop("teleop timeout: motors stopped");
     else
       sim_.halt();
@@ -223,11 +556,12 @@ void FirmwareCore::applySafety() {
   if (behaviour && s.gcs_alive && !estop_) {
     command = *behaviour;
   } else if (s.gcs_alive && s.teleop_active && !estop_) {
-    command = teleop_;
-    if ((s.forward_blocked && command.linear_mps > 0.0) ||
-        (s.reverse_blocked && command.linear_mps < 0.0))
-      command.linear_mps = 0.0;
+    command = teleopCommand();
   }
+  // Bumpers block motion into the obstacle whoever commands it (the wall follower backs up).
+  if ((s.forward_blocked && command.linear_mps > 0.0) ||
+      (s.reverse_blocked && command.linear_mps < 0.0))
+    command.linear_mps = 0.0;
   sim_.setCommand(command);
 }
 
@@ -236,6 +570,7 @@ void FirmwareCore::advance(double now_s) {
   while (sim_.time_s() + 0.5 * dt <= now_s) {
     applySafety();
     sim_.step(sample_);
+    updateImuAndBattery(dt);
     const std::uint32_t pressed = sample_.bumpers & ~bumpers_;
     const bool changed = sample_.bumpers != bumpers_;
     bumpers_ = sample_.bumpers;
@@ -248,10 +583,30 @@ void FirmwareCore::advance(double now_s) {
       }
       safetyStop("bumper " + names + ": stopped");
     }
-    if (changed)
-      next_contact_s_ = sample_.time_s;  // report contact changes at once
+    if (changed) {
+      if (Stream* contact = findStream(mav::IrgsContact::kId); contact && contact->period_s > 0.0)
+        contact->next_s = sample_.time_s;  // report contact changes at once
+    }
+    onSampleForBehaviour(sample_);
     sendTelemetry(sample_);
+    sendMissionReply(mission_store_.poll(sample_.time_s));
   }
+}
+
+// The IMU sees the true motion: forward acceleration from the true velocity's change, the
+// centripetal acceleration v * omega, gravity and the yaw rate; the battery drains with it.
+void FirmwareCore::updateImuAndBattery(double dt_s) {
+  const VelocityCommand v = sim_.trueVelocity();
+  accel_forward_mps2_ = (v.linear_mps - last_true_velocity_.linear_mps) / dt_s;
+  last_true_velocity_ = v;
+  battery_current_a_ = config_.battery_idle_a + config_.battery_a_per_mps * std::abs(v.linear_mps) +
+                       config_.battery_a_per_radps * std::abs(v.angular_radps);
+  battery_used_ah_ =
+      std::min(config_.battery_capacity_ah, battery_used_ah_ + battery_current_a_ * dt_s / 3600.0);
+}
+
+double FirmwareCore::batteryRemaining() const {
+  return std::clamp(1.0 - battery_used_ah_ / config_.battery_capacity_ah, 0.0, 1.0);
 }
 
 void FirmwareCore::sendTelemetry(const TelemetrySample& sample) {
@@ -261,6 +616,8 @@ void FirmwareCore::sendTelemetry(const TelemetrySample& sample) {
       continue;
     fresh_sonar_[static_cast<std::size_t>(r.sensor)] = r;
     last_sonar_[static_cast<std::size_t>(r.sensor)] = r;
+    if (r.sensor < 16)
+      scan_fired_ |= 1u << r.sensor;
     last_sonar_time_s_ = t;
   }
   // A small tolerance so that periods that are multiples of dt do not slip a step on rounding.
@@ -271,20 +628,14 @@ void FirmwareCore::sendTelemetry(const TelemetrySample& sample) {
     if (next_heartbeat_s_ <= t)
       next_heartbeat_s_ = t + config_.heartbeat_period_s;
   }
-  auto due = [&](double period, double& next) {
-    if (period <= 0.0 || t + eps < next)
-      return false;
-    next += period;
-    if (next <= t)
-      next = t + period;
-    return true;
-  };
-  if (due(config_.odometry_period_s, next_odometry_s_))
-    sendOdometry(sample);
-  if (due(config_.sonar_period_s, next_sonar_s_))
-    sendSonar(sample);
-  if (due(config_.contact_period_s, next_contact_s_))
-    sendContact(sample);
+  for (Stream& st : streams_) {
+    if (st.period_s <= 0.0 || t + eps < st.next_s)
+      continue;
+    st.next_s += st.period_s;
+    if (st.next_s <= t)
+      st.next_s = t + st.period_s;
+    sendStream(st.message_id, sample);
+  }
   if (behaviour_.state == mav::IrgsBehaviourState::kRunning &&
       t + eps >= next_behaviour_status_s_) {
     sendBehaviourStatus();
@@ -292,41 +643,220 @@ void FirmwareCore::sendTelemetry(const TelemetrySample& sample) {
   }
 }
 
+void FirmwareCore::sendStream(std::uint32_t message_id, const TelemetrySample& sample) {
+  switch (message_id) {
+    case mav::LocalPositionNed::kId:
+      sendLocalPosition(sample);
+      break;
+    case mav::Attitude::kId:
+      sendAttitude(sample);
+      break;
+    case mav::Odometry::kId:
+      sendOdometryMessage(sample);
+      break;
+    case mav::IrgsPose2d::kId:
+      sendPose2d(sample);
+      break;
+    case mav::IrgsEncoderTicks::kId:
+      sendEncoderTicks(sample);
+      break;
+    case mav::DistanceSensor::kId:
+      sendDistanceSensors(sample);
+      break;
+    case mav::IrgsSonarScan::kId:
+      sendSonarScan();
+      break;
+    case mav::IrgsContact::kId:
+      sendContact(sample);
+      break;
+    case mav::ScaledImu::kId:
+      sendScaledImu(sample);
+      break;
+    case mav::SysStatus::kId:
+      sendSysStatus();
+      break;
+    default:
+      break;
+  }
+}
+
+// ---- Behaviours --------------------------------------------------------------------------------
+
+// Why a behaviour cannot start now, or nothing.
+std::optional<std::uint8_t> FirmwareCore::behaviourPrecondition() const {
+  if (estop_)
+    return result(mav::MavResult::kDenied);
+  if (!safety().gcs_alive)
+    return result(mav::MavResult::kTemporarilyRejected);
+  return std::nullopt;
+}
+
+void FirmwareCore::beginBehaviour(BehaviourKind kind, std::uint16_t command) {
+  endBehaviour(mav::IrgsBehaviourState::kAborted);  // a new behaviour replaces the old one
+  behaviour_ = {};
+  behaviour_.kind = kind;
+  behaviour_.command = command;
+  behaviour_.state = mav::IrgsBehaviourState::kRunning;
+  behaviour_.last_pose = sim_.odometryPose();
+  teleop_forward_ = teleop_yaw_cw_ = 0.0;
+  last_teleop_s_.reset();
+  teleop_was_active_ = false;  // the behaviour replaces teleop: no teleop-expiry stop
+  next_behaviour_status_s_ = sim_.time_s();
+}
+
 std::uint8_t FirmwareCore::startBehaviour(const mav::CommandLong& command) {
   const bool move = command.command == static_cast<std::uint16_t>(mav::MavCmd::kIrgsMoveDistance);
   const double target = static_cast<double>(command.param1);
   const double speed = static_cast<double>(command.param2);
   if (!std::isfinite(target) || !std::isfinite(speed) || speed < 0.0)
-    return static_cast<std::uint8_t>(mav::MavResult::kDenied);
-  if (estop_)
-    return static_cast<std::uint8_t>(mav::MavResult::kDenied);
+    return result(mav::MavResult::kDenied);
+  if (auto refused = behaviourPrecondition())
+    return *refused;
   const SafetyState s = safety();
-  if (!s.gcs_alive)
-    return static_cast<std::uint8_t>(mav::MavResult::kTemporarilyRejected);
   if (move && ((s.forward_blocked && target > 0.0) || (s.reverse_blocked && target < 0.0)))
-    return static_cast<std::uint8_t>(mav::MavResult::kTemporarilyRejected);
-  const MotionLimits& limits = sim_.profile().limits;
-  const double max = move ? limits.max_speed_mps : limits.max_turn_rate_radps;
-  endBehaviour(mav::IrgsBehaviourState::kAborted);  // a new behaviour replaces the old one
-  behaviour_ = {};
-  behaviour_.command = command.command;
-  behaviour_.state = mav::IrgsBehaviourState::kRunning;
+    return result(mav::MavResult::kTemporarilyRejected);
+  const double max = move ? maxSpeed() : maxTurnRate();
+  beginBehaviour(move ? BehaviourKind::kMove : BehaviourKind::kTurn, command.command);
   behaviour_.target = target;
   behaviour_.speed = speed > 0.0 ? std::min(speed, max) : 0.5 * max;  // default: half speed
-  behaviour_.last_pose = sim_.odometryPose();
-  teleop_ = {};
-  last_teleop_s_.reset();
-  teleop_was_active_ = false;  // the behaviour replaces teleop: no teleop-expiry stop
-  next_behaviour_status_s_ = sim_.time_s();
-  return static_cast<std::uint8_t>(mav::MavResult::kAccepted);
+  return result(mav::MavResult::kAccepted);
+}
+
+// MAV_CMD_IRGS_FOLLOW_WALL: param1 distance [m], param2 side (IRGS_WALL_SIDE), param3 speed
+// [m/s] (0 = default), param4 travel limit [m] (0 = none).
+std::uint8_t FirmwareCore::startWallFollow(const mav::CommandLong& command) {
+  const double distance = static_cast<double>(command.param1);
+  const double side = static_cast<double>(command.param2);
+  const double speed = static_cast<double>(command.param3);
+  const double travel = static_cast<double>(command.param4);
+  if (!std::isfinite(distance) || !std::isfinite(speed) || !std::isfinite(travel) ||
+      distance <= 0.0 || speed < 0.0 || travel < 0.0 ||
+      (side != static_cast<double>(mav::IrgsWallSide::kLeft) &&
+       side != static_cast<double>(mav::IrgsWallSide::kRight))) {
+    sendStatus(kSeverityWarning, "FOLLOW_WALL: bad distance, side, speed or travel");
+    return result(mav::MavResult::kDenied);
+  }
+  if (auto refused = behaviourPrecondition())
+    return *refused;
+  WallFollowConfig wc;
+  wc.distance_m = distance;
+  wc.wall_on_left = side == static_cast<double>(mav::IrgsWallSide::kLeft);
+  wc.speed_mps = std::min(speed > 0.0 ? speed : wc.speed_mps, maxSpeed());
+  wc.turn_rate_radps = std::min(wc.turn_rate_radps, maxTurnRate());
+  wc.valid_distance_m = std::max(wc.valid_distance_m, distance + wc.lost_margin_m + 0.1);
+  if (auto error = wallFollowConfigError(wc)) {
+    sendStatus(kSeverityWarning, "FOLLOW_WALL: " + *error);
+    return result(mav::MavResult::kDenied);
+  }
+  std::unique_ptr<Behaviour> follower;
+  try {
+    follower = std::make_unique<WallFollower>(sim_.profile(), wc);
+  } catch (const std::invalid_argument& e) {
+    sendStatus(kSeverityWarning, std::string("FOLLOW_WALL: ") + e.what());
+    return result(mav::MavResult::kDenied);
+  }
+  beginBehaviour(BehaviourKind::kFollowWall, command.command);
+  host_behaviour_ = std::move(follower);
+  host_command_ = {};
+  behaviour_.target = travel;
+  behaviour_.travel_limit_m = travel;
+  behaviour_.speed = wc.speed_mps;
+  return result(mav::MavResult::kAccepted);
+}
+
+// MAV_CMD_MISSION_START: param1 first item, param2 last item (0 or below the first: to the end).
+std::uint8_t FirmwareCore::startMission(const mav::CommandLong& command) {
+  const auto& points = mission_store_.waypoints();
+  const double first_param = static_cast<double>(command.param1);
+  const double last_param = static_cast<double>(command.param2);
+  if (points.empty()) {
+    sendStatus(kSeverityWarning, "MISSION_START: no mission uploaded");
+    return result(mav::MavResult::kDenied);
+  }
+  if (mission_store_.uploading())
+    return result(mav::MavResult::kTemporarilyRejected);
+  if (!std::isfinite(first_param) || !std::isfinite(last_param) || first_param < 0.0 ||
+      first_param >= static_cast<double>(points.size()))
+    return result(mav::MavResult::kDenied);
+  if (auto refused = behaviourPrecondition())
+    return *refused;
+  const auto first = static_cast<std::size_t>(first_param);
+  std::size_t last = points.size() - 1;
+  if (last_param > first_param && last_param < static_cast<double>(points.size()))
+    last = static_cast<std::size_t>(last_param);
+  const std::vector<Vec2> part(points.begin() + static_cast<std::ptrdiff_t>(first),
+                               points.begin() + static_cast<std::ptrdiff_t>(last) + 1);
+  std::vector<MissionLeg> legs = missionLegs(sim_.odometryPose(), part);
+  beginBehaviour(BehaviourKind::kMission, command.command);
+  run_ = {};
+  run_.first = static_cast<std::uint16_t>(first);
+  run_.legs = std::move(legs);
+  for (MissionLeg& leg : run_.legs)
+    leg.last_item = static_cast<std::uint16_t>(leg.last_item + first);
+  behaviour_.speed = 0.5 * maxSpeed();
+  for (const MissionLeg& leg : run_.legs)
+    behaviour_.target += leg.segment.distance_m;
+  sendStatus(kSeverityInfo, "mission started: " + std::to_string(part.size()) + " waypoints, " +
+                                std::to_string(run_.legs.size()) + " legs");
+  startMissionLeg();
+  return result(mav::MavResult::kAccepted);
+}
+
+// Watchdog: the phase's measure (heading error or remaining distance) must shrink by `step`
+// within kMissionStall_s, else the mission fails (stuck against something the bumpers miss).
+bool FirmwareCore::missionStalled(double measure, double step) {
+  const double now = sim_.time_s();
+  if (!run_.best_measure || measure < *run_.best_measure - step) {
+    run_.best_measure = measure;
+    run_.improved_at_s = now;
+    return false;
+  }
+  if (now - run_.improved_at_s < kMissionStall_s)
+    return false;
+  sendStatus(kSeverityWarning, "mission stalled on leg " + std::to_string(run_.leg + 1) + " of " +
+                                   std::to_string(run_.legs.size()));
+  endBehaviour(mav::IrgsBehaviourState::kFailed);
+  return true;
+}
+
+void FirmwareCore::startMissionLeg() {
+  run_.driving = false;
+  run_.best_measure.reset();
+  mav::MissionCurrent current;
+  current.seq = run_.leg < run_.legs.size() ? run_.legs[run_.leg].last_item
+                                            : static_cast<std::uint16_t>(run_.reported + 1);
+  current.total = static_cast<std::uint16_t>(mission_store_.waypoints().size());
+  current.mission_id = mission_store_.missionId();
+  send(current);
 }
 
 void FirmwareCore::endBehaviour(mav::IrgsBehaviourState state) {
   if (behaviour_.state != mav::IrgsBehaviourState::kRunning)
     return;
   behaviour_.state = state;
+  host_behaviour_.reset();
+  host_command_ = {};
   sim_.setCommand({});
   sendBehaviourStatus();
+}
+
+// FOLLOW_WALL consumes the firmware's own telemetry, one sample per step.
+void FirmwareCore::onSampleForBehaviour(const TelemetrySample& sample) {
+  if (behaviour_.kind != BehaviourKind::kFollowWall ||
+      behaviour_.state != mav::IrgsBehaviourState::kRunning || !host_behaviour_)
+    return;
+  host_command_ = host_behaviour_->onSample(sample);
+  const BehaviourStatus status = host_behaviour_->status();
+  if (const auto* follower = dynamic_cast<const WallFollower*>(host_behaviour_.get()))
+    behaviour_.progress = follower->distanceTravelled_m();
+  if (status.finished) {
+    if (status.failed && !status.message.empty())
+      sendStatus(kSeverityWarning, "FOLLOW_WALL: " + status.message);
+    endBehaviour(status.failed ? mav::IrgsBehaviourState::kFailed
+                               : mav::IrgsBehaviourState::kSucceeded);
+  } else if (behaviour_.travel_limit_m > 0.0 && behaviour_.progress >= behaviour_.travel_limit_m) {
+    endBehaviour(mav::IrgsBehaviourState::kSucceeded);
+  }
 }
 
 // Progress from odometry; the speed is shaped v = min(speed, sqrt(2 a remaining)) so the robot
@@ -334,8 +864,15 @@ void FirmwareCore::endBehaviour(mav::IrgsBehaviourState state) {
 std::optional<VelocityCommand> FirmwareCore::behaviourCommand() {
   if (behaviour_.state != mav::IrgsBehaviourState::kRunning)
     return std::nullopt;
-  const bool move =
-      behaviour_.command == static_cast<std::uint16_t>(mav::MavCmd::kIrgsMoveDistance);
+  if (behaviour_.kind == BehaviourKind::kFollowWall) {
+    VelocityCommand c = host_command_;
+    c.linear_mps = std::clamp(c.linear_mps, -maxSpeed(), maxSpeed());
+    c.angular_radps = std::clamp(c.angular_radps, -maxTurnRate(), maxTurnRate());
+    return c;
+  }
+  if (behaviour_.kind == BehaviourKind::kMission)
+    return missionCommand();
+  const bool move = behaviour_.kind == BehaviourKind::kMove;
   const Pose2& pose = sim_.odometryPose();
   const Pose2& last = behaviour_.last_pose;
   if (move) {
@@ -360,6 +897,63 @@ std::optional<VelocityCommand> FirmwareCore::behaviourCommand() {
   return command;
 }
 
+// The traveling algorithm (003_… section 4.3): per leg, turn on the spot to the leg's heading,
+// then drive straight to the turning point, steering at it on odometry; on arrival report the
+// leg's mission items reached. Speeds are shaped like the behaviours' to brake in time.
+std::optional<VelocityCommand> FirmwareCore::missionCommand() {
+  const Pose2& pose = sim_.odometryPose();
+  behaviour_.progress +=
+      std::hypot(pose.x - behaviour_.last_pose.x, pose.y - behaviour_.last_pose.y);
+  behaviour_.last_pose = pose;
+  const MotionLimits& limits = sim_.profile().limits;
+  while (run_.leg < run_.legs.size()) {
+    const MissionLeg& leg = run_.legs[run_.leg];
+    const Vec2 to_target = leg.segment.to - Vec2(pose.x, pose.y);
+    if (!run_.driving) {
+      // Turn toward the turning point as odometry sees it now (the planned heading when on it).
+      const double bearing = to_target.norm() > 0.05 ? std::atan2(to_target.y(), to_target.x())
+                                                     : leg.segment.heading_rad;
+      const double error = wrapAngle(bearing - pose.theta);
+      if (std::abs(error) > degToRad(0.5)) {
+        if (missionStalled(std::abs(error), degToRad(0.2)))
+          return std::nullopt;
+        const double rate = std::min(
+            0.5 * maxTurnRate(), std::sqrt(2.0 * limits.max_turn_accel_radps2 * std::abs(error)));
+        return VelocityCommand{0.0, std::copysign(std::max(rate, 0.02), error)};
+      }
+      run_.driving = true;
+      run_.best_measure.reset();
+    }
+    const Vec2 heading(std::cos(leg.segment.heading_rad), std::sin(leg.segment.heading_rad));
+    const double remaining = to_target.dot(heading);  // along the leg: negative once passed
+    if (remaining > 0.005) {
+      if (missionStalled(remaining, 0.001))
+        return std::nullopt;
+      const double v =
+          std::min(behaviour_.speed, std::sqrt(2.0 * limits.max_accel_mps2 * remaining));
+      // Steer at the turning point; near it the bearing is noisy, so hold the leg heading.
+      const double aim = to_target.norm() > 0.05 ? std::atan2(to_target.y(), to_target.x())
+                                                 : leg.segment.heading_rad;
+      const double omega =
+          std::clamp(2.0 * wrapAngle(aim - pose.theta), -0.5 * maxTurnRate(), 0.5 * maxTurnRate());
+      return VelocityCommand{std::max(v, 0.01), omega};
+    }
+    // Arrived at the turning point: the items up to this leg's last are reached.
+    for (int item = run_.reported + 1; item <= static_cast<int>(leg.last_item); ++item) {
+      mav::MissionItemReached reached;
+      reached.seq = static_cast<std::uint16_t>(item);
+      send(reached);
+    }
+    run_.reported = std::max(run_.reported, static_cast<int>(leg.last_item));
+    ++run_.leg;
+    startMissionLeg();
+  }
+  // All legs done (or none: the robot stood on the waypoints already).
+  sendStatus(kSeverityInfo, "mission complete");
+  endBehaviour(mav::IrgsBehaviourState::kSucceeded);
+  return std::nullopt;
+}
+
 void FirmwareCore::sendBehaviourStatus() {
   mav::IrgsBehaviourStatus status;
   status.time_boot_ms = toBootMs(sim_.time_s());
@@ -368,6 +962,8 @@ void FirmwareCore::sendBehaviourStatus() {
   status.progress = static_cast<float>(behaviour_.progress);
   send(status);
 }
+
+// ---- Telemetry ---------------------------------------------------------------------------------
 
 void FirmwareCore::sendHeartbeat() {
   mav::Heartbeat hb;
@@ -382,7 +978,10 @@ void FirmwareCore::sendHeartbeat() {
   if (!estop_)
     hb.base_mode |= static_cast<std::uint8_t>(mav::MavModeFlag::kSafetyArmed);
   const bool behaviour = behaviour_.state == mav::IrgsBehaviourState::kRunning;
-  hb.custom_mode = estop_ ? 4u : behaviour ? 2u : teleop ? 1u : 0u;
+  const bool mission = behaviour && behaviour_.kind == BehaviourKind::kMission;
+  if (mission)
+    hb.base_mode |= static_cast<std::uint8_t>(mav::MavModeFlag::kAutoEnabled);
+  hb.custom_mode = estop_ ? 4u : mission ? 3u : behaviour ? 2u : teleop ? 1u : 0u;
   const VelocityCommand v = sim_.trueVelocity();
   const bool moving = v.linear_mps != 0.0 || v.angular_radps != 0.0;
   hb.system_status = static_cast<std::uint8_t>(estop_   ? mav::MavState::kEmergency
@@ -391,44 +990,45 @@ void FirmwareCore::sendHeartbeat() {
   send(hb);
 }
 
-void FirmwareCore::sendOdometry(const TelemetrySample& sample) {
+void FirmwareCore::sendLocalPosition(const TelemetrySample& sample) {
+  // FLU -> NED (world x as north): rotation by pi about x (y and yaw change sign).
   const Pose2& p = sample.odometry_pose;
   const double v = sample.measured_velocity.linear_mps;
-  const double omega = sample.measured_velocity.angular_radps;
-  if (config_.send_local_position) {
-    // FLU -> NED (world x as north): rotation by pi about x (y and yaw change sign).
-    mav::LocalPositionNed lp;
-    lp.time_boot_ms = toBootMs(sample.time_s);
-    lp.x = static_cast<float>(p.x);
-    lp.y = static_cast<float>(-p.y);
-    lp.vx = static_cast<float>(v * std::cos(p.theta));
-    lp.vy = static_cast<float>(-v * std::sin(p.theta));
-    send(lp);
-    mav::Attitude att;
-    att.time_boot_ms = lp.time_boot_ms;
-    att.yaw = static_cast<float>(wrapAngle(-p.theta));
-    att.yawspeed = static_cast<float>(-omega);
-    send(att);
-  }
-  if (config_.send_odometry)
-    sendOdometryMessage(sample);
-  if (config_.send_pose_2d) {
-    mav::IrgsPose2d pose;
-    pose.time_boot_ms = toBootMs(sample.time_s);
-    pose.x = static_cast<float>(p.x);
-    pose.y = static_cast<float>(p.y);
-    pose.theta = static_cast<float>(wrapAngle(p.theta));
-    pose.v = static_cast<float>(v);
-    pose.omega = static_cast<float>(omega);
-    send(pose);
-  }
-  if (config_.send_encoder_ticks) {
-    mav::IrgsEncoderTicks ticks;
-    ticks.time_usec = toBootUs(sample.time_s);
-    ticks.left_ticks = sample.left_ticks;
-    ticks.right_ticks = sample.right_ticks;
-    send(ticks);
-  }
+  mav::LocalPositionNed lp;
+  lp.time_boot_ms = toBootMs(sample.time_s);
+  lp.x = static_cast<float>(p.x);
+  lp.y = static_cast<float>(-p.y);
+  lp.vx = static_cast<float>(v * std::cos(p.theta));
+  lp.vy = static_cast<float>(-v * std::sin(p.theta));
+  send(lp);
+}
+
+void FirmwareCore::sendAttitude(const TelemetrySample& sample) {
+  mav::Attitude att;
+  att.time_boot_ms = toBootMs(sample.time_s);
+  att.yaw = static_cast<float>(wrapAngle(-sample.odometry_pose.theta));
+  att.yawspeed = static_cast<float>(-sample.measured_velocity.angular_radps);
+  send(att);
+}
+
+void FirmwareCore::sendPose2d(const TelemetrySample& sample) {
+  const Pose2& p = sample.odometry_pose;
+  mav::IrgsPose2d pose;
+  pose.time_boot_ms = toBootMs(sample.time_s);
+  pose.x = static_cast<float>(p.x);
+  pose.y = static_cast<float>(p.y);
+  pose.theta = static_cast<float>(wrapAngle(p.theta));
+  pose.v = static_cast<float>(sample.measured_velocity.linear_mps);
+  pose.omega = static_cast<float>(sample.measured_velocity.angular_radps);
+  send(pose);
+}
+
+void FirmwareCore::sendEncoderTicks(const TelemetrySample& sample) {
+  mav::IrgsEncoderTicks ticks;
+  ticks.time_usec = toBootUs(sample.time_s);
+  ticks.left_ticks = sample.left_ticks;
+  ticks.right_ticks = sample.right_ticks;
+  send(ticks);
 }
 
 void FirmwareCore::sendOdometryMessage(const TelemetrySample& sample) {
@@ -452,21 +1052,12 @@ void FirmwareCore::sendOdometryMessage(const TelemetrySample& sample) {
   send(od);
 }
 
-void FirmwareCore::sendSonar(const TelemetrySample& sample) {
+void FirmwareCore::sendDistanceSensors(const TelemetrySample& sample) {
   const auto& specs = sim_.profile().sonars;
-  mav::IrgsSonarScan scan;
-  scan.time_boot_ms = toBootMs(last_sonar_time_s_);
-  scan.count = static_cast<std::uint8_t>(std::min<std::size_t>(specs.size(), scan.range.size()));
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    const SonarSpec& spec = specs[i];
-    if (i < scan.range.size()) {
-      scan.range[i] = last_sonar_[i].echo ? toMillimetres(last_sonar_[i].range_m)
-                                          : std::numeric_limits<std::uint16_t>::max();
-      if (fresh_sonar_[i])
-        scan.fired = static_cast<std::uint16_t>(scan.fired | (1u << i));
-    }
-    if (!fresh_sonar_[i] || i > 255 || !config_.send_distance_sensor)
+  for (std::size_t i = 0; i < specs.size() && i < 256; ++i) {
+    if (!fresh_sonar_[i])
       continue;
+    const SonarSpec& spec = specs[i];
     const SonarReading& r = *fresh_sonar_[i];
     mav::DistanceSensor ds;
     ds.time_boot_ms = toBootMs(sample.time_s);
@@ -484,8 +1075,20 @@ void FirmwareCore::sendSonar(const TelemetrySample& sample) {
     send(ds);
   }
   std::fill(fresh_sonar_.begin(), fresh_sonar_.end(), std::nullopt);
-  if (config_.send_sonar_scan && !specs.empty())
-    send(scan);
+}
+
+void FirmwareCore::sendSonarScan() {
+  const auto& specs = sim_.profile().sonars;
+  mav::IrgsSonarScan scan;
+  scan.time_boot_ms = toBootMs(last_sonar_time_s_);
+  scan.count = static_cast<std::uint8_t>(std::min<std::size_t>(specs.size(), scan.range.size()));
+  for (std::size_t i = 0; i < scan.count; ++i) {
+    scan.range[i] = last_sonar_[i].echo ? toMillimetres(last_sonar_[i].range_m)
+                                        : std::numeric_limits<std::uint16_t>::max();
+  }
+  scan.fired = static_cast<std::uint16_t>(scan_fired_ & 0xFFFFu);
+  scan_fired_ = 0;
+  send(scan);
 }
 
 void FirmwareCore::sendContact(const TelemetrySample& sample) {
@@ -502,6 +1105,57 @@ void FirmwareCore::sendContact(const TelemetrySample& sample) {
         nothing ? std::numeric_limits<std::uint16_t>::max() : toMillimetres(proximity[i]);
   }
   send(c);
+}
+
+// SCALED_IMU in the body FRD frame (x forward, y right, z down): a resting IMU reads -1 g on z;
+// the yaw rate about z-down is minus our counter-clockwise omega. True motion plus white noise.
+void FirmwareCore::sendScaledImu(const TelemetrySample& sample) {
+  const VelocityCommand v = sim_.trueVelocity();
+  const double to_mg = 1000.0 / kStandardGravity;
+  auto noise = [&](double sigma) { return sigma * unit_normal_(imu_rng_); };
+  mav::ScaledImu imu;
+  imu.time_boot_ms = toBootMs(sample.time_s);
+  imu.xacc = toInt16((accel_forward_mps2_ + noise(config_.accel_noise_mps2)) * to_mg);
+  // Centripetal acceleration v * omega points left (FLU +y), i.e. FRD -y.
+  imu.yacc = toInt16(-(v.linear_mps * v.angular_radps + noise(config_.accel_noise_mps2)) * to_mg);
+  imu.zacc = toInt16(-(kStandardGravity + noise(config_.accel_noise_mps2)) * to_mg);
+  imu.xgyro = toInt16(noise(config_.gyro_noise_radps) * 1000.0);
+  imu.ygyro = toInt16(noise(config_.gyro_noise_radps) * 1000.0);
+  imu.zgyro = toInt16(-(v.angular_radps + noise(config_.gyro_noise_radps)) * 1000.0);
+  send(imu);
+}
+
+// SYS_STATUS: sensors present/healthy, the virtual battery and the link's receive errors
+// (frames lost or corrupted on the way to the robot, as the decoder counted them).
+void FirmwareCore::sendSysStatus() {
+  mav::SysStatus st;
+  std::uint32_t present = kSensorGyro | kSensorAccel | kSensorMotorOutputs | kSensorBattery;
+  if (!sim_.profile().sonars.empty() || !sim_.profile().proximity.empty())
+    present |= kSensorProximity;
+  std::uint32_t health = present;
+  if (estop_)
+    health &= ~kSensorMotorOutputs;  // motors latched off
+  const double remaining = batteryRemaining();
+  if (remaining < 0.1)
+    health &= ~kSensorBattery;
+  st.onboard_control_sensors_present = present;
+  st.onboard_control_sensors_enabled = present;
+  st.onboard_control_sensors_health = health;
+  const double volts =
+      config_.battery_empty_v + (config_.battery_full_v - config_.battery_empty_v) * remaining;
+  st.voltage_battery = static_cast<std::uint16_t>(std::lround(volts * 1000.0));
+  st.current_battery = toInt16(battery_current_a_ * 100.0);
+  st.battery_remaining = static_cast<std::int8_t>(std::lround(remaining * 100.0));
+  const mav::DecodeCounters& rx = decoder_.totals();
+  const std::uint64_t errors = rx.bad_crc + rx.bad_length + rx.sequence_gaps + rx.bad_signature +
+                               rx.replay_rejected + rx.unsigned_rejected;
+  const std::uint64_t attempts = rx.frames + errors;
+  st.drop_rate_comm = static_cast<std::uint16_t>(
+      attempts == 0
+          ? 0
+          : std::llround(10000.0 * static_cast<double>(errors) / static_cast<double>(attempts)));
+  st.errors_comm = static_cast<std::uint16_t>(std::min<std::uint64_t>(errors, 65535));
+  send(st);
 }
 
 }  // namespace irgs::app

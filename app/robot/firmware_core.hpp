@@ -3,7 +3,10 @@
 // safety rules of docs/protocol.md ("Firmware safety rules"). Pure: no Asio, no threads, no
 // clock. The caller passes the firmware time `now_s` (seconds since boot, non-decreasing), feeds
 // received bytes and writes out the bytes takeOutput() returns. Behaviours: MOVE_DISTANCE and
-// TURN_ANGLE (closed loop on odometry); FOLLOW_WALL is answered UNSUPPORTED.
+// TURN_ANGLE (closed loop on odometry), FOLLOW_WALL (core WallFollower on the firmware's own
+// telemetry) and missions (an uploaded path run as the thesis traveling algorithm). Parameters
+// (PARAM_*, firmware_params.hpp), per-message stream intervals (MAV_CMD_SET_MESSAGE_INTERVAL),
+// SYS_STATUS and SCALED_IMU as docs/protocol.md sections 12-14 describe.
 //
 // Frames (see docs/protocol.md):
 //  * Our world frame is x forward (at start), y left, z up, theta counter-clockwise (FLU).
@@ -18,15 +21,20 @@
 //    counts clockwise): heading +90 deg (left) -> YAW_270, -90 deg (right) -> YAW_90.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "app/robot/firmware_mission.hpp"
+#include "app/robot/firmware_params.hpp"
 #include "comms/mavlink/frame.hpp"
 #include "comms/mavlink/frame_decoder.hpp"
 #include "comms/mavlink/frame_encoder.hpp"
 #include "comms/mavlink/messages.hpp"
+#include "core/behaviour/behaviour.hpp"
 #include "core/robot/telemetry.hpp"
 #include "core/sim/simulator.hpp"
 
@@ -44,7 +52,9 @@ struct FirmwareConfig {
   // enabled.
   double sonar_period_s = 0.05;
   double contact_period_s = 0.1;  // IRGS_CONTACT (also sent at once when a bumper changes)
-  // Streams. The defaults use ~89 % of a 115200 baud UART (docs/protocol.md, section 11);
+  double imu_period_s = 0.1;      // SCALED_IMU
+  double status_period_s = 1.0;   // SYS_STATUS
+  // Streams. The defaults use ~93 % of a 115200 baud UART (docs/protocol.md, section 11);
   // the compact dialect streams are for slow links (switch ODOMETRY off there).
   bool send_odometry = true;
   bool send_local_position = true;
@@ -56,12 +66,24 @@ struct FirmwareConfig {
   // heartbeats missing for gcs_timeout_s all motion stops. Safety stops brake at once.
   double teleop_timeout_s = 0.3;
   double gcs_timeout_s = 1.5;
+  // SCALED_IMU noise (white, seeded): gyro [rad/s] and accelerometer [m/s^2], 1 sigma.
+  std::uint64_t imu_seed = 1;
+  double gyro_noise_radps = 0.003;
+  double accel_noise_mps2 = 0.05;
+  // The virtual battery behind SYS_STATUS: a linear discharge curve from full_v to empty_v over
+  // capacity_ah, drawing idle_a plus a_per_mps * |v| plus a_per_radps * |omega|.
+  double battery_capacity_ah = 2.2;
+  double battery_full_v = 12.6;
+  double battery_empty_v = 10.5;
+  double battery_idle_a = 0.25;
+  double battery_a_per_mps = 2.0;
+  double battery_a_per_radps = 0.4;
 };
 
 // The compact profile for slow links (9600 baud HC-05 modules, docs/protocol.md sections 4-5):
 // IRGS_POSE_2D at 10 Hz, IRGS_SONAR_SCAN at 5 Hz, IRGS_CONTACT at 1 Hz (and on change),
 // HEARTBEAT; no ODOMETRY, LOCAL_POSITION_NED, ATTITUDE, DISTANCE_SENSOR or encoder ticks.
-// About 640 B/s of the 960 B/s a 9600 baud UART moves.
+// SYS_STATUS at 0.2 Hz, no SCALED_IMU. About 650 B/s of the 960 B/s a 9600 baud UART moves.
 FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base = {});
 
 // Why the motors are (or are not) allowed to move, for tests and the console.
@@ -95,24 +117,70 @@ class FirmwareCore {
   const Simulator& simulator() const { return sim_; }
   const FirmwareConfig& config() const { return config_; }
   const comms::mavlink::DecodeCounters& decodeTotals() const { return decoder_.totals(); }
+  const ParamTable& params() const { return params_; }
+  const MissionStore& mission() const { return mission_store_; }
+  // The period of a streamed message [s] (0 = off), nullopt for messages that are not streams.
+  std::optional<double> messagePeriod(std::uint32_t message_id) const;
+  // State of charge of the virtual battery, 0..1.
+  double batteryRemaining() const;
 
  private:
+  // A periodic message; period 0 = off. default_period_s is the configured rate (the value
+  // MAV_CMD_SET_MESSAGE_INTERVAL with interval 0 restores).
+  struct Stream {
+    std::uint32_t message_id = 0;
+    ParamId group = ParamId::kRatePose;
+    double default_period_s = 0.0;
+    double period_s = 0.0;
+    double next_s = 0.0;
+  };
+  enum class BehaviourKind { kNone, kMove, kTurn, kFollowWall, kMission };
+
   template <class M>
   void send(const M& message);
   void sendStatus(std::uint8_t severity, const std::string& text);
   void handleCommand(const comms::mavlink::CommandLong& command);
+  void handleParam(const comms::mavlink::Frame& frame);
+  void handleMission(const comms::mavlink::Frame& frame, double now_s);
+  void sendMissionReply(const MissionReply& reply);
+  void sendParam(ParamId id);
+  void applyParam(ParamId id);
+  std::uint8_t setMessageInterval(const comms::mavlink::CommandLong& command);
+  void syncRateParams();
+  Stream* findStream(std::uint32_t message_id);
+  const Stream* findStream(std::uint32_t message_id) const;
   void applySafety();
   void safetyStop(const std::string& reason);
   void sendTelemetry(const TelemetrySample& sample);
-  void sendOdometry(const TelemetrySample& sample);
+  void sendStream(std::uint32_t message_id, const TelemetrySample& sample);
+  void sendLocalPosition(const TelemetrySample& sample);
+  void sendAttitude(const TelemetrySample& sample);
   void sendOdometryMessage(const TelemetrySample& sample);
-  void sendSonar(const TelemetrySample& sample);
+  void sendPose2d(const TelemetrySample& sample);
+  void sendEncoderTicks(const TelemetrySample& sample);
+  void sendDistanceSensors(const TelemetrySample& sample);
+  void sendSonarScan();
   void sendContact(const TelemetrySample& sample);
+  void sendScaledImu(const TelemetrySample& sample);
+  void sendSysStatus();
   void sendHeartbeat();
-  // Behaviours (MAV_CMD_IRGS_MOVE_DISTANCE / TURN_ANGLE): closed loop on odometry.
+  void updateImuAndBattery(double dt_s);
+  double maxSpeed() const;
+  double maxTurnRate() const;
+  VelocityCommand teleopCommand() const;
+  // Behaviours: MOVE_DISTANCE / TURN_ANGLE closed loop on odometry, FOLLOW_WALL through the
+  // core WallFollower, MISSION_START through the mission legs.
   std::uint8_t startBehaviour(const comms::mavlink::CommandLong& command);
+  std::uint8_t startWallFollow(const comms::mavlink::CommandLong& command);
+  std::uint8_t startMission(const comms::mavlink::CommandLong& command);
+  std::optional<std::uint8_t> behaviourPrecondition() const;
+  void beginBehaviour(BehaviourKind kind, std::uint16_t command);
   void endBehaviour(comms::mavlink::IrgsBehaviourState state);
   std::optional<VelocityCommand> behaviourCommand();
+  std::optional<VelocityCommand> missionCommand();
+  void onSampleForBehaviour(const TelemetrySample& sample);
+  void startMissionLeg();
+  bool missionStalled(double measure, double step);
   void sendBehaviourStatus();
 
   Simulator sim_;
@@ -122,11 +190,16 @@ class FirmwareCore {
   std::vector<comms::mavlink::Frame> frames_;
   std::vector<std::uint8_t> output_;
   TelemetrySample sample_;
+  ParamTable params_;
+  MissionStore mission_store_;
 
   // Safety state.
   std::optional<double> last_gcs_heartbeat_s_;
   std::optional<double> last_teleop_s_;
-  VelocityCommand teleop_;
+  // MANUAL_CONTROL x and r as fractions [-1, 1] (r clockwise positive), scaled by MAX_SPEED and
+  // MAX_TURN_RATE when applied, so a parameter change takes effect at once.
+  double teleop_forward_ = 0.0;
+  double teleop_yaw_cw_ = 0.0;
   bool estop_ = false;
   bool gcs_was_alive_ = false;
   bool teleop_was_active_ = false;
@@ -134,25 +207,49 @@ class FirmwareCore {
   std::uint32_t bumpers_ = 0;
 
   // The running (or last) behaviour.
-  struct Behaviour {
-    std::uint16_t command = 0;  // 0: none yet
+  struct ActiveBehaviour {
+    BehaviourKind kind = BehaviourKind::kNone;
+    std::uint16_t command = 0;  // MAV_CMD of the IRGS_BEHAVIOUR_STATUS reports; 0: none yet
     comms::mavlink::IrgsBehaviourState state = comms::mavlink::IrgsBehaviourState::kIdle;
-    double target = 0.0;    // signed distance [m] or angle [rad]
-    double speed = 0.0;     // magnitude [m/s] or [rad/s]
-    double progress = 0.0;  // signed, same unit as target
-    Pose2 last_pose;        // odometry pose at the previous step
+    double target = 0.0;          // signed distance [m] or angle [rad]
+    double speed = 0.0;           // magnitude [m/s] or [rad/s]
+    double progress = 0.0;        // signed, same unit as target; metres for wall following/missions
+    double travel_limit_m = 0.0;  // FOLLOW_WALL: 0 = none
+    Pose2 last_pose;              // odometry pose at the previous step
   };
-  Behaviour behaviour_;
+  ActiveBehaviour behaviour_;
   double next_behaviour_status_s_ = 0.0;
+  std::unique_ptr<Behaviour> host_behaviour_;  // FOLLOW_WALL: the core behaviour
+  VelocityCommand host_command_;               // its answer to the newest sample
 
-  // Telemetry schedule (firmware time of the next send) and sonar accumulation.
+  // The running mission: legs of the traveling algorithm, each turn-then-drive.
+  struct MissionRun {
+    std::vector<MissionLeg> legs;
+    std::size_t leg = 0;
+    bool driving = false;                // false: turning on the spot to the leg's heading
+    int reported = -1;                   // highest mission item reported reached
+    std::uint16_t first = 0;             // first mission item of the run
+    std::optional<double> best_measure;  // watchdog: best heading error / distance this phase
+    double improved_at_s = 0.0;
+  };
+  static constexpr double kMissionStall_s = 5.0;
+  MissionRun run_;
+
+  // Telemetry schedule and sonar accumulation.
   double next_heartbeat_s_ = 0.0;
-  double next_odometry_s_ = 0.0;
-  double next_sonar_s_ = 0.0;
-  double next_contact_s_ = 0.0;
+  std::vector<Stream> streams_;
   std::vector<std::optional<SonarReading>> fresh_sonar_;  // newest unsent reading per sonar
   std::vector<SonarReading> last_sonar_;                  // newest reading per sonar (scan)
+  std::uint32_t scan_fired_ = 0;  // sonars that fired since the last IRGS_SONAR_SCAN
   double last_sonar_time_s_ = 0.0;
+
+  // IMU and battery models.
+  std::mt19937_64 imu_rng_;
+  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  VelocityCommand last_true_velocity_;
+  double accel_forward_mps2_ = 0.0;
+  double battery_used_ah_ = 0.0;
+  double battery_current_a_ = 0.0;
 };
 
 }  // namespace irgs::app

@@ -27,6 +27,7 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "app/robot/arcos_firmware.hpp"
 #include "app/robot/firmware_core.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "comms/transport/tcp_transport.hpp"
@@ -46,6 +47,7 @@ constexpr int kExitIo = 3;
 const char* const kUsage =
     "usage: irgs-robot [--map FILE] [--robot FILE] [--seed N] [--pty [--link PATH]]\n"
     "                  [--tcp PORT] [--baud N] [--rate HZ] [--gcs-timeout S] [--ideal]\n"
+    "                  [--log-motion] [--protocol mavlink|arcos] [--watchdog S]\n"
     "  Serves the simulated robot over MAVLink 2. Without --tcp it opens a pseudo-terminal,\n"
     "  prints its path (/dev/pts/N) on stdout and serves on it; --link PATH also creates a\n"
     "  symlink PATH to it. --tcp PORT serves as a TCP server (0 = any free port; the port is\n"
@@ -53,7 +55,12 @@ const char* const kUsage =
     "  (default 115200); below 38400 the compact profile is sent (IRGS_POSE_2D 10 Hz,\n"
     "  IRGS_SONAR_SCAN 5 Hz). --rate HZ: odometry and sonar telemetry rate (default 20).\n"
     "  --gcs-timeout S: stop when ground-station heartbeats are missing S seconds (1.5).\n"
-    "  --ideal: no odometry or sensor errors. Defaults: bundled default map and thesis robot.\n";
+    "  --ideal: no odometry or sensor errors. Defaults: bundled default map and thesis robot.\n"
+    "  --log-motion: print 'motion start|stop t=S mono=S' on stdout when the robot starts or\n"
+    "  stops moving (t: firmware time, mono: CLOCK_MONOTONIC seconds, for end-to-end tests).\n"
+    "  --protocol arcos: serve as a Pioneer over ARCOS/P2OS instead (docs/pioneer.md); use a\n"
+    "  Pioneer profile (--robot resources/robots/pioneer_p3dx.json) and --tcp 8101 like\n"
+    "  MobileSim. --watchdog S: ARCOS PULSE watchdog (default: the profile's, 2 s).\n";
 
 struct Options {
   fs::path map = fs::path(IRGS_RESOURCE_DIR) / "maps/default.json";
@@ -65,6 +72,9 @@ struct Options {
   double rate_hz = 20.0;
   double gcs_timeout_s = 1.5;
   bool ideal = false;
+  bool log_motion = false;
+  bool arcos = false;                // --protocol arcos
+  std::optional<double> watchdog_s;  // --watchdog (ARCOS)
 };
 
 bool parseNumber(const std::string& text, double& out) {
@@ -97,6 +107,8 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
       pty = true;
     } else if (arg == "--ideal") {
       o.ideal = true;
+    } else if (arg == "--log-motion") {
+      o.log_motion = true;
     } else if (arg == "--map" || arg == "--robot" || arg == "--link") {
       if (!value(v) || v.empty())
         return arg + " needs a path";
@@ -120,6 +132,14 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
           return "--baud: must be 300-4000000";
         o.baud = static_cast<std::uint32_t>(number);
       }
+    } else if (arg == "--protocol") {
+      if (!value(v) || (v != "mavlink" && v != "arcos"))
+        return "--protocol needs mavlink or arcos";
+      o.arcos = v == "arcos";
+    } else if (arg == "--watchdog") {
+      if (!value(v) || !parseNumber(v, number) || number <= 0 || number > 1000)
+        return arg + " needs a positive number";
+      o.watchdog_s = number;
     } else if (arg == "--rate" || arg == "--gcs-timeout") {
       if (!value(v) || !parseNumber(v, number) || number <= 0 || number > 1000)
         return arg + " needs a positive number";
@@ -276,14 +296,32 @@ int main(int argc, char** argv) {
   }
   fw_config.gcs_timeout_s = options.gcs_timeout_s;
   std::unique_ptr<irgs::app::FirmwareCore> core;
+  std::unique_ptr<irgs::app::ArcosFirmware> arcos;  // --protocol arcos
   try {
-    core = std::make_unique<irgs::app::FirmwareCore>(
-        irgs::Simulator(std::move(*map.map), std::move(*robot.profile), sim_config), fw_config);
+    irgs::Simulator sim(std::move(*map.map), std::move(*robot.profile), sim_config);
+    if (options.arcos) {
+      irgs::app::ArcosFirmwareConfig arcos_config;
+      arcos_config.watchdog_s = options.watchdog_s;
+      arcos = std::make_unique<irgs::app::ArcosFirmware>(std::move(sim), arcos_config);
+    } else {
+      core = std::make_unique<irgs::app::FirmwareCore>(std::move(sim), fw_config);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "irgs-robot: %s\n", e.what());
     return kExitFiles;
   }
-  const double dt = core->simulator().config().dt_s;
+  // The served protocol, whichever it is.
+  const auto receive = [&core, &arcos](std::span<const std::uint8_t> bytes, double now_s) {
+    core ? core->receiveBytes(bytes, now_s) : arcos->receiveBytes(bytes, now_s);
+  };
+  const auto advance = [&core, &arcos](double now_s) {
+    core ? core->advance(now_s) : arcos->advance(now_s);
+  };
+  const auto takeOutput = [&core, &arcos] {
+    return core ? core->takeOutput() : arcos->takeOutput();
+  };
+  const irgs::Simulator& simulator = core ? core->simulator() : arcos->simulator();
+  const double dt = simulator.config().dt_s;
 
   // Signals are taken by sigtimedwait in this thread; block them before the io thread starts so
   // it inherits the mask.
@@ -333,9 +371,8 @@ int main(int argc, char** argv) {
       irgs::comms::TcpServerOptions tcp_options;
       tcp_options.port = *options.tcp_port;
       irgs::comms::TransportCallbacks callbacks;
-      irgs::app::FirmwareCore* firmware = core.get();
-      callbacks.on_bytes = [firmware, &seconds](std::span<const std::uint8_t> bytes) {
-        firmware->receiveBytes(bytes, seconds(Clock::now()));
+      callbacks.on_bytes = [&receive, &seconds](std::span<const std::uint8_t> bytes) {
+        receive(bytes, seconds(Clock::now()));
       };
       // Announce the port once it is bound (the second `opening` report: "listening on ...").
       callbacks.on_state = [&fatal, &tcp, announced = false](irgs::comms::TransportState state,
@@ -357,17 +394,33 @@ int main(int argc, char** argv) {
     std::vector<std::uint8_t> rx;
     Clock::time_point next = start;
     Clock::time_point last_write = start;
+    bool was_moving = false;  // --log-motion
+    // Set on the io thread at shutdown: a timer completion already queued when the timer is
+    // destroyed still runs (with success), and must not touch the destroyed timer.
+    bool stopping = false;
     std::function<void()> tick = [&] {
+      if (stopping)
+        return;
       const Clock::time_point now = Clock::now();
       const double now_s = seconds(now);
       if (pty) {
         rx.clear();
         pty->poll(rx);
         if (!rx.empty())
-          core->receiveBytes(rx, now_s);
+          receive(rx, now_s);
       }
-      core->advance(now_s);
-      const std::vector<std::uint8_t> out = core->takeOutput();
+      advance(now_s);
+      if (options.log_motion) {
+        const irgs::VelocityCommand v = simulator.trueVelocity();
+        const bool moving = std::abs(v.linear_mps) > 1e-4 || std::abs(v.angular_radps) > 1e-4;
+        if (moving != was_moving) {
+          was_moving = moving;
+          std::printf("motion %s t=%.3f mono=%.6f\n", moving ? "start" : "stop", now_s,
+                      std::chrono::duration<double>(now.time_since_epoch()).count());
+          std::fflush(stdout);
+        }
+      }
+      const std::vector<std::uint8_t> out = takeOutput();
       if (pty) {
         pty->write(out, std::chrono::duration<double>(now - last_write).count());
       } else if (tcp && !out.empty()) {
@@ -393,6 +446,7 @@ int main(int argc, char** argv) {
     }
     std::promise<void> stopped;
     boost::asio::post(io->context(), [&] {
+      stopping = true;
       timer.reset();
       tcp.reset();
       stopped.set_value();

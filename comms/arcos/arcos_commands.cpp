@@ -1,6 +1,7 @@
 #include "comms/arcos/arcos_commands.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -47,11 +48,14 @@ std::vector<std::uint8_t> commandPacket(std::uint8_t command, std::string_view a
 }
 
 int vel2Argument(int left_units, int right_units) {
+  // -128 is excluded so that the 16-bit value never reaches -32768, beyond the int range.
   const auto to_byte = [](int units) {
-    return static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(units, -128, 127)));
+    return static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(units, -127, 127)));
   };
-  // The argument travels as a positive int whose two bytes are the wheels (ARIA com2Bytes).
-  return static_cast<int>(to_byte(left_units)) << 8 | to_byte(right_units);
+  // ARIA's com2Bytes passes the two bytes to comInt(short): the argument is their signed 16-bit
+  // value, so a negative left wheel travels as a negative int (sign byte 0x1b + magnitude).
+  const auto bits = static_cast<std::uint16_t>(to_byte(left_units) << 8 | to_byte(right_units));
+  return static_cast<std::int16_t>(bits);
 }
 
 WheelUnits splitVel2Argument(int argument) {

@@ -74,7 +74,8 @@ inline std::vector<std::uint8_t> commandPacket(Command command, int argument) {
 }
 
 // VEL2's argument: the low byte is the right wheel, the high byte the left wheel, each a signed
-// byte in units of Vel2Divisor mm/s (20 mm/s on a P3-DX). Values are clamped to -128..127.
+// byte in units of Vel2Divisor mm/s (20 mm/s on a P3-DX). Values are clamped to -127..127.
+// The result is the two bytes read as a signed 16-bit value, ready for commandPacket(int).
 int vel2Argument(int left_units, int right_units);
 struct WheelUnits {
   int left = 0;

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -241,6 +242,107 @@ TEST(IrgsRobotEndToEnd, DrivesOverAPtyStreamsTelemetryAndStopsWhenTeleopExpires)
   EXPECT_EQ(port.totals().bad_crc, 0u);
 
   EXPECT_EQ(robot.terminate(SIGTERM, 5.0), 0) << "no clean exit on SIGTERM";
+}
+
+// The services of docs/protocol.md sections 12-14 on the real executable: a parameter set and
+// read back, SYS_STATUS and SCALED_IMU streaming, and a one-waypoint mission 0.25 m ahead
+// uploaded, started and reported reached.
+TEST(IrgsRobotEndToEnd, SetsAParameterAndRunsAnUploadedMissionOverThePty) {
+  Child robot({IRGS_ROBOT_EXE, "--ideal", "--seed", "4"});
+  ASSERT_TRUE(robot.started());
+  const auto path = robot.readLine(20.0);
+  ASSERT_TRUE(path.has_value()) << "irgs-robot printed no pty path";
+  Port port(*path);
+  ASSERT_TRUE(port.ok()) << "cannot open " << *path;
+
+  mav::Heartbeat hb;
+  hb.type = static_cast<std::uint8_t>(mav::MavType::kGcs);
+  std::optional<mav::Odometry> pose;
+  std::optional<float> sr_pose;
+  std::optional<std::uint8_t> mission_ack;
+  std::optional<std::uint8_t> start_ack;
+  bool reached = false;
+  bool sys_status = false;
+  bool imu = false;
+  auto handle = [&](const std::vector<mav::Frame>& frames) {
+    for (const auto& f : frames) {
+      if (auto o = f.as<mav::Odometry>()) {
+        pose = *o;
+      } else if (auto v = f.as<mav::ParamValue>()) {
+        if (std::string(v->param_id.data(), strnlen(v->param_id.data(), 16)) == "SR_POSE")
+          sr_pose = v->param_value;
+      } else if (auto r = f.as<mav::MissionRequestInt>()) {
+        ASSERT_TRUE(pose.has_value());
+        // 0.25 m straight ahead of the odometry pose (NED x/y, yaw from the quaternion).
+        const double yaw = 2.0 * std::atan2(pose->q[3], pose->q[0]);
+        mav::MissionItemInt item;
+        item.target_system = 1;
+        item.seq = r->seq;
+        item.frame = static_cast<std::uint8_t>(mav::MavFrame::kLocalNed);
+        item.command = static_cast<std::uint16_t>(mav::MavCmd::kNavWaypoint);
+        item.x = static_cast<std::int32_t>(std::lround((pose->x + 0.25 * std::cos(yaw)) * 1e4));
+        item.y = static_cast<std::int32_t>(std::lround((pose->y + 0.25 * std::sin(yaw)) * 1e4));
+        port.send(item);
+      } else if (auto a = f.as<mav::MissionAck>()) {
+        mission_ack = a->type;
+      } else if (auto c = f.as<mav::CommandAck>()) {
+        if (c->command == static_cast<std::uint16_t>(mav::MavCmd::kMissionStart))
+          start_ack = c->result;
+      } else if (auto m = f.as<mav::MissionItemReached>()) {
+        reached = reached || m->seq == 0;
+      } else if (f.as<mav::SysStatus>()) {
+        sys_status = true;
+      } else if (f.as<mav::ScaledImu>()) {
+        imu = true;
+      }
+    }
+  };
+  const auto t0 = Clock::now();
+  double next_hb = 0.0;
+  enum class Step { kWaitPose, kParam, kUpload, kStart, kRun, kDone } step = Step::kWaitPose;
+  while (since(t0) < 20.0 && step != Step::kDone) {
+    if (since(t0) >= next_hb) {
+      port.send(hb);
+      next_hb += 0.5;
+    }
+    handle(port.receive(0.02));
+    if (step == Step::kWaitPose && pose) {
+      mav::ParamSet set;
+      set.target_system = 1;
+      const std::string id = "SR_POSE";
+      std::copy(id.begin(), id.end(), set.param_id.begin());
+      set.param_value = 10.0f;
+      set.param_type = static_cast<std::uint8_t>(mav::MavParamType::kReal32);
+      port.send(set);
+      step = Step::kParam;
+    } else if (step == Step::kParam && sr_pose) {
+      mav::MissionCount count;
+      count.target_system = 1;
+      count.count = 1;
+      port.send(count);
+      step = Step::kUpload;
+    } else if (step == Step::kUpload && mission_ack) {
+      ASSERT_EQ(*mission_ack, static_cast<std::uint8_t>(mav::MavMissionResult::kAccepted));
+      mav::CommandLong start;
+      start.target_system = 1;
+      start.command = static_cast<std::uint16_t>(mav::MavCmd::kMissionStart);
+      port.send(start);
+      step = Step::kStart;
+    } else if (step == Step::kStart && start_ack) {
+      ASSERT_EQ(*start_ack, static_cast<std::uint8_t>(mav::MavResult::kAccepted));
+      step = Step::kRun;
+    } else if (step == Step::kRun && reached) {
+      step = Step::kDone;
+    }
+  }
+  EXPECT_EQ(step, Step::kDone) << "stuck at step " << static_cast<int>(step);
+  ASSERT_TRUE(sr_pose.has_value());
+  EXPECT_FLOAT_EQ(*sr_pose, 10.0f);
+  EXPECT_TRUE(reached);
+  EXPECT_TRUE(sys_status);
+  EXPECT_TRUE(imu);
+  EXPECT_EQ(port.totals().bad_crc, 0u);
+  EXPECT_EQ(robot.terminate(SIGTERM, 5.0), 0);
 }
 
 TEST(IrgsRobotEndToEnd, ServesAsATcpServerAndExitsCleanlyOnSigint) {

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -63,12 +64,15 @@ TEST(ArcosCommandPackets, CarryStringArgumentsWithALengthByte) {
 
 TEST(ArcosVel2, PacksLeftInTheHighByteAndRightInTheLowByteAsSignedBytes) {
   const int argument = vel2Argument(-5, 10);
-  EXPECT_EQ(argument, 0xfb0a);
+  EXPECT_EQ(argument, static_cast<std::int16_t>(0xfb0a));
+  // As ARIA sends it: a negative int argument whose magnitude is -(int16)0xfb0a = 0x04f6.
+  EXPECT_THAT(commandPayload(32, argument), ElementsAre(32, 0x1b, 0xf6, 0x04));
+  EXPECT_EQ(splitVel2Argument(-1270).left, -5);
   const WheelUnits wheels = splitVel2Argument(argument);
   EXPECT_EQ(wheels.left, -5);
   EXPECT_EQ(wheels.right, 10);
   EXPECT_EQ(splitVel2Argument(vel2Argument(500, -500)).left, 127);  // clamped
-  EXPECT_EQ(splitVel2Argument(vel2Argument(500, -500)).right, -128);
+  EXPECT_EQ(splitVel2Argument(vel2Argument(500, -500)).right, -127);
 }
 
 TEST(ArcosPacketDecoder, DeliversPacketsSplitAcrossFeedsOneByteAtATime) {

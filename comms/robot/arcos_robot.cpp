@@ -1,0 +1,448 @@
+#include "comms/robot/arcos_robot.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <future>
+#include <mutex>
+#include <stdexcept>
+
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "comms/arcos/arcos_commands.hpp"
+#include "comms/arcos/arcos_packet.hpp"
+#include "comms/robot/arcos_telemetry.hpp"
+#include "comms/transport/transport_factory.hpp"
+
+namespace irgs::comms {
+
+namespace arc = arcos;
+
+namespace {
+
+bool positive(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
+
+LinkState linkStateOf(arc::ArcosState s, bool was_connected) {
+  switch (s) {
+    case arc::ArcosState::kDisconnected:
+      return LinkState::kDisconnected;
+    case arc::ArcosState::kSyncing:
+    case arc::ArcosState::kOpening:
+      return was_connected ? LinkState::kLost : LinkState::kConnecting;
+    case arc::ArcosState::kConnected:
+      return LinkState::kConnected;
+    case arc::ArcosState::kLost:
+      return LinkState::kLost;
+  }
+  return LinkState::kDisconnected;
+}
+
+}  // namespace
+
+bool isArcosUrl(const LinkUrl& url) {
+  const auto it = url.options.find("protocol");
+  return it != url.options.end() && it->second == "arcos";
+}
+
+ArcosVelocityArguments arcosVelocityArguments(const VelocityCommand& command,
+                                              const MotionLimits& limits) {
+  if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps))
+    throw std::invalid_argument("arcosVelocityArguments: non-finite command");
+  const double v = std::clamp(command.linear_mps, -limits.max_speed_mps, limits.max_speed_mps);
+  const double w =
+      std::clamp(command.angular_radps, -limits.max_turn_rate_radps, limits.max_turn_rate_radps);
+  const double max = arc::kMaxIntArgument;
+  return {static_cast<int>(std::clamp(std::round(v * 1000.0), -max, max)),
+          static_cast<int>(std::clamp(std::round(radToDeg(w)), -max, max))};
+}
+
+struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
+  Impl(IoThread& io_thread, RobotProfile robot_profile, ArcosParams arcos_params,
+       ArcosRobotConfig robot_config)
+      : io(io_thread),
+        config(robot_config),
+        profile(robot_profile),
+        session(robot_config.session),
+        converter(std::move(robot_profile), std::move(arcos_params)),
+        timer(io_thread.context()),
+        epoch(std::chrono::steady_clock::now()),
+        backoff_s(robot_config.reconnect_initial_s) {}
+
+  // ---- io thread only, except the members under `mutex` ----
+  double now() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - epoch).count();
+  }
+
+  void start() {
+    const double t = now();
+    session.start(t);
+    transport_state = TransportState::kOpening;
+    transport->open();
+    flush(t);
+    arm();
+  }
+
+  void arm() {
+    if (stopped)
+      return;
+    timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(config.tick_s)));
+    timer.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+      if (ec || self->stopped)
+        return;
+      self->onTick();
+      self->arm();
+    });
+  }
+
+  void onTick() {
+    const double t = now();
+    if (transport_state == TransportState::kFailed && t >= reopen_at_s) {
+      ++reconnect_attempts;
+      pushEvent(LinkEventKind::kReconnecting, t, linkState(), 5,
+                "reopening " + transport->description());
+      transport_state = TransportState::kOpening;
+      decoder.reset();
+      transport->open();
+    }
+    session.tick(t);
+    VelocityCommand wanted;
+    {
+      const std::lock_guard lock(mutex);
+      wanted = command;
+    }
+    const bool moving = wanted.linear_mps != 0.0 || wanted.angular_radps != 0.0;
+    if (moving && t - last_command_s >= config.command_period_s)
+      sendVelocity(wanted, t);
+    flush(t);
+  }
+
+  void sendVelocity(const VelocityCommand& v, double t) {
+    const ArcosVelocityArguments a = arcosVelocityArguments(v, profile.limits);
+    session.sendCommand(arc::commandPayload(arc::Command::kVel, a.vel_mmps));
+    session.sendCommand(arc::commandPayload(arc::Command::kRVel, a.rvel_degps));
+    last_command_s = t;
+  }
+
+  void onBytes(std::span<const std::uint8_t> bytes) {
+    const double t = now();
+    rx_bytes += bytes.size();
+    packets.clear();
+    counters += decoder.feed(bytes, packets);
+    for (const arc::Packet& p : packets)
+      session.onPacket(p, t);
+    flush(t);
+  }
+
+  void onTransportState(TransportState state, const std::string& message) {
+    const double t = now();
+    const TransportState before = transport_state;
+    transport_state = state;
+    if (!message.empty() && message != last_transport_message)
+      pushEvent(LinkEventKind::kTransport, t, linkState(),
+                static_cast<std::uint8_t>(state == TransportState::kFailed ? 4 : 6), message);
+    last_transport_message = message;
+    if (state == TransportState::kOpen) {
+      backoff_s = config.reconnect_initial_s;
+      decoder.reset();
+      if (session.state() != arc::ArcosState::kConnected)
+        session.start(t);  // synchronise from scratch on the new connection
+    } else if (state == TransportState::kFailed && before != TransportState::kFailed) {
+      reopen_at_s = t + backoff_s;
+      backoff_s = std::min(config.reconnect_max_s, backoff_s * 2.0);
+    }
+    flush(t);
+  }
+
+  LinkState linkState() const { return linkStateOf(session.state(), was_connected); }
+
+  void pushEvent(LinkEventKind kind, double t, LinkState state, int severity, std::string text) {
+    LinkEvent e;
+    e.kind = kind;
+    e.time_s = t;
+    e.state = state;
+    e.severity = static_cast<std::uint8_t>(severity);
+    e.text = std::move(text);
+    const std::lock_guard lock(mutex);
+    events.push_back(std::move(e));
+    while (events.size() > config.max_pending_events)
+      events.pop_front();
+  }
+
+  // Writes what the session queued and publishes its SIPs, events and state.
+  void flush(double t) {
+    for (auto& packet : session.takeOutgoing()) {
+      tx_bytes += packet.size();
+      ++tx_packets;
+      if (transport && transport_state == TransportState::kOpen)
+        transport->send(packet);
+    }
+    const arc::ArcosState before = published_state;
+    for (const arc::ArcosEvent& e : session.takeEvents()) {
+      LinkEventKind kind = LinkEventKind::kTransport;
+      if (e.state == arc::ArcosState::kSyncing)
+        kind = was_connected ? LinkEventKind::kReconnecting : LinkEventKind::kConnecting;
+      else if (e.state == arc::ArcosState::kConnected)
+        kind = LinkEventKind::kLinkUp;
+      else if (e.state == arc::ArcosState::kLost)
+        kind = LinkEventKind::kLinkLost;
+      else if (e.state == arc::ArcosState::kDisconnected)
+        kind = LinkEventKind::kClosed;
+      if (e.state == arc::ArcosState::kConnected && !was_connected)
+        was_connected = true;
+      pushEvent(kind, e.time_s, linkStateOf(e.state, was_connected),
+                static_cast<std::uint8_t>(e.warning ? 4 : 6), e.text);
+    }
+    const arc::ArcosState state = session.state();
+    if (state != before) {
+      if (before == arc::ArcosState::kConnected) {
+        ++link_losses;
+        bool cleared = false;
+        {
+          const std::lock_guard lock(mutex);
+          cleared = command != VelocityCommand{};
+          command = {};
+        }
+        if (cleared)
+          pushEvent(LinkEventKind::kLinkLost, t, linkState(), 4,
+                    "ARCOS: link lost while driving; the command is cleared (drive again)");
+      }
+      if (state == arc::ArcosState::kOpening)
+        converter.reset();  // a new connection: the robot may have restarted its odometry
+      published_state = state;
+    }
+    std::vector<arc::StandardSip> sips = session.takeSips();
+    bool stalled_now = false;
+    std::vector<TelemetrySample> converted;
+    converted.reserve(sips.size());
+    for (const arc::StandardSip& sip : sips) {
+      converted.push_back(converter.convert(sip, t));
+      stalled_now = sip.leftStalled() || sip.rightStalled();
+    }
+    if (!sips.empty() && stalled_now != stalled) {
+      stalled = stalled_now;
+      pushEvent(LinkEventKind::kStatusText, t, linkState(),
+                static_cast<std::uint8_t>(stalled ? 4 : 6),
+                stalled ? "ARCOS: wheels stalled" : "ARCOS: wheels free again");
+    }
+    const std::lock_guard lock(mutex);
+    for (auto& s : converted) {
+      samples.push_back(std::move(s));
+      if (samples.size() > config.max_pending_samples) {
+        samples.pop_front();
+        ++dropped_samples;
+      }
+    }
+    state_snapshot = state;
+    identity_snapshot = session.identity();
+    session_stats = session.stats();
+    stats_snapshot.state = linkState();
+    stats_snapshot.rx_bytes = rx_bytes;
+    stats_snapshot.tx_bytes = tx_bytes;
+    stats_snapshot.rx_messages = counters.packets;
+    stats_snapshot.tx_messages = tx_packets;
+    stats_snapshot.crc_errors = counters.bad_checksum;
+    stats_snapshot.other_errors = counters.bad_count + session_stats.bad_sips;
+    stats_snapshot.link_losses = link_losses;
+    stats_snapshot.reconnect_attempts = reconnect_attempts;
+    if (session_stats.last_sip_s)
+      stats_snapshot.since_heartbeat_s = t - *session_stats.last_sip_s;
+  }
+
+  void shutdownNow() {
+    if (stopped)
+      return;
+    const double t = now();
+    session.stop(t);  // CLOSE: a robot left open would keep streaming to nobody
+    for (auto& packet : session.takeOutgoing()) {
+      if (transport && transport_state == TransportState::kOpen)
+        transport->send(packet);
+    }
+    stopped = true;
+    timer.cancel();
+    transport.reset();  // no transport callback after this
+  }
+
+  IoThread& io;
+  ArcosRobotConfig config;
+  RobotProfile profile;
+  arc::ArcosClientSession session;
+  ArcosTelemetryConverter converter;
+  boost::asio::steady_timer timer;
+  std::chrono::steady_clock::time_point epoch;
+  std::unique_ptr<Transport> transport;
+  arc::PacketDecoder decoder;
+  std::vector<arc::Packet> packets;
+  arc::PacketCounters counters;
+  TransportState transport_state = TransportState::kClosed;
+  std::string last_transport_message;
+  double reopen_at_s = 0.0;
+  double backoff_s;
+  double last_command_s = -1e9;
+  bool stopped = false;
+  bool was_connected = false;
+  bool stalled = false;
+  arc::ArcosState published_state = arc::ArcosState::kDisconnected;
+  std::uint64_t rx_bytes = 0;
+  std::uint64_t tx_bytes = 0;
+  std::uint64_t tx_packets = 0;
+  std::uint32_t link_losses = 0;
+  std::uint32_t reconnect_attempts = 0;
+
+  // Shared with the caller's thread.
+  mutable std::mutex mutex;
+  VelocityCommand command;
+  std::deque<TelemetrySample> samples;
+  std::deque<LinkEvent> events;
+  std::uint64_t dropped_samples = 0;
+  arc::ArcosState state_snapshot = arc::ArcosState::kDisconnected;
+  std::optional<arc::RobotIdentity> identity_snapshot;
+  arc::ArcosStats session_stats;
+  LinkStats stats_snapshot;
+};
+
+ArcosRobot::OpenResult ArcosRobot::open(IoThread& io, const LinkUrl& url, RobotProfile profile,
+                                        ArcosRobotConfig config) {
+  if (!positive(config.tick_s) || !positive(config.command_period_s) ||
+      !positive(config.reconnect_initial_s) || config.reconnect_max_s < config.reconnect_initial_s)
+    return {nullptr, "arcos config: tick, command period and reconnect delays must be > 0"};
+  ArcosParamsResult params = arcosParamsFromProfile(profile);
+  auto impl = std::make_shared<Impl>(io, profile, params.params, config);
+  for (const std::string& w : params.warnings)
+    impl->pushEvent(LinkEventKind::kTransport, 0.0, LinkState::kDisconnected, 4, w);
+  if (!params.found)
+    impl->pushEvent(
+        LinkEventKind::kTransport, 0.0, LinkState::kDisconnected, 5,
+        "profile " + profile.name + " has no `arcos` conversion factors; using the P3-DX values");
+  TransportCallbacks tc;
+  Impl* raw = impl.get();  // Impl destroys the transport (no callback after) before it dies
+  tc.on_bytes = [raw](std::span<const std::uint8_t> bytes) { raw->onBytes(bytes); };
+  tc.on_state = [raw](TransportState state, const std::string& message) {
+    raw->onTransportState(state, message);
+  };
+  TransportResult made = makeTransport(url, io, std::move(tc));
+  if (!made.transport)
+    return {nullptr, made.error};
+  impl->transport = std::move(made.transport);
+  boost::asio::post(io.context(), [impl] { impl->start(); });
+  return {std::unique_ptr<ArcosRobot>(
+              new ArcosRobot(std::move(profile), url.toString(), params.params, impl)),
+          {}};
+}
+
+ArcosRobot::OpenResult ArcosRobot::open(std::shared_ptr<IoThread> io, const LinkUrl& url,
+                                        RobotProfile profile, ArcosRobotConfig config) {
+  if (!io)
+    throw std::invalid_argument("ArcosRobot::open: null IoThread");
+  OpenResult result = open(*io, url, std::move(profile), std::move(config));
+  if (result.robot)
+    result.robot->io_keepalive_ = std::move(io);
+  return result;
+}
+
+ArcosRobot::ArcosRobot(RobotProfile profile, std::string url_text, ArcosParams params,
+                       std::shared_ptr<Impl> impl)
+    : profile_(std::move(profile)),
+      url_text_(std::move(url_text)),
+      params_(std::move(params)),
+      impl_(std::move(impl)) {}
+
+ArcosRobot::~ArcosRobot() {
+  IoThread& io = impl_->io;
+  if (io.isCurrentThread() || !io.running()) {
+    impl_->shutdownNow();
+    return;
+  }
+  std::promise<void> done;
+  boost::asio::post(io.context(), [&done, impl = impl_] {
+    impl->shutdownNow();
+    done.set_value();
+  });
+  done.get_future().wait();
+}
+
+const RobotProfile& ArcosRobot::profile() const {
+  return profile_;
+}
+
+std::string ArcosRobot::describe() const {
+  const std::lock_guard lock(impl_->mutex);
+  std::string text = url_text_ + " (" + arc::toString(impl_->state_snapshot);
+  if (impl_->identity_snapshot)
+    text += ": " + impl_->identity_snapshot->name + " " + impl_->identity_snapshot->robot_class +
+            " " + impl_->identity_snapshot->subclass;
+  return text + ")";
+}
+
+void ArcosRobot::drive(const VelocityCommand& command) {
+  arcosVelocityArguments(command, profile_.limits);  // throws for a non-finite command
+  {
+    const std::lock_guard lock(impl_->mutex);
+    impl_->command = command;
+  }
+  boost::asio::post(impl_->io.context(), [impl = impl_, command] {
+    if (impl->stopped)
+      return;
+    impl->sendVelocity(command, impl->now());  // at once; repeated by onTick while non-zero
+    impl->flush(impl->now());
+  });
+}
+
+void ArcosRobot::stop() {
+  {
+    const std::lock_guard lock(impl_->mutex);
+    impl_->command = {};
+  }
+  boost::asio::post(impl_->io.context(), [impl = impl_] {
+    if (impl->stopped)
+      return;
+    impl->session.sendCommand(arc::commandPayload(arc::Command::kStop));
+    impl->flush(impl->now());
+  });
+}
+
+std::vector<TelemetrySample> ArcosRobot::update(double /*wall_elapsed_s*/) {
+  const std::lock_guard lock(impl_->mutex);
+  std::vector<TelemetrySample> out(std::make_move_iterator(impl_->samples.begin()),
+                                   std::make_move_iterator(impl_->samples.end()));
+  impl_->samples.clear();
+  return out;
+}
+
+LinkState ArcosRobot::linkState() const {
+  const std::lock_guard lock(impl_->mutex);
+  return impl_->stats_snapshot.state;
+}
+
+LinkStats ArcosRobot::linkStats() const {
+  const std::lock_guard lock(impl_->mutex);
+  return impl_->stats_snapshot;
+}
+
+std::vector<LinkEvent> ArcosRobot::takeEvents() {
+  const std::lock_guard lock(impl_->mutex);
+  std::vector<LinkEvent> out(impl_->events.begin(), impl_->events.end());
+  impl_->events.clear();
+  return out;
+}
+
+arcos::ArcosState ArcosRobot::sessionState() const {
+  const std::lock_guard lock(impl_->mutex);
+  return impl_->state_snapshot;
+}
+
+std::optional<arcos::RobotIdentity> ArcosRobot::identity() const {
+  const std::lock_guard lock(impl_->mutex);
+  return impl_->identity_snapshot;
+}
+
+std::uint64_t ArcosRobot::droppedSamples() const {
+  const std::lock_guard lock(impl_->mutex);
+  return impl_->dropped_samples;
+}
+
+}  // namespace irgs::comms

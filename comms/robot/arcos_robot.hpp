@@ -1,0 +1,101 @@
+#pragma once
+// irgs::Robot over ARCOS/P2OS: a Pioneer-class robot (P3-DX/AT, PeopleBot, AmigoBot), MobileSim
+// or AMRISim, or `irgs-robot --protocol arcos`, on any transport (serial, TCP; opened from a URL
+// with protocol=arcos, e.g. tcp://localhost:8101?protocol=arcos). See docs/pioneer.md.
+//
+// Threading as LinkedRobot: the transport and the pure ArcosClientSession run on the IoThread;
+// samples and console events are queued under a mutex and drained by update()/takeEvents() on
+// the caller's thread. drive() sends VEL (mm/s) and RVEL (deg/s), clamped to the profile's
+// limits, and repeats them every command_period_s while the command is non-zero; the session
+// sends PULSE every pulse_period_s, so the robot's watchdog only fires when we are gone.
+// stop() sends STOP. Each standard SIP becomes one TelemetrySample (arcos_telemetry.hpp) whose
+// time_s is the arrival time on this adapter's clock (seconds since open()).
+//
+// Link loss: no SIP for sip_timeout_s -> kLost; the session re-synchronises on its own and the
+// transport is reopened (with backoff) when it fails, e.g. a USB adapter unplugged. The
+// commanded velocity is cleared on loss (an event says so) so a robot that comes back does not
+// start moving on an old command.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "comms/arcos/arcos_session.hpp"
+#include "comms/link/link_types.hpp"
+#include "comms/link/link_url.hpp"
+#include "comms/robot/arcos_params.hpp"
+#include "comms/transport/io_thread.hpp"
+#include "core/robot/robot.hpp"
+
+namespace irgs::comms {
+
+struct ArcosRobotConfig {
+  arcos::ArcosSessionConfig session{};
+  double tick_s = 0.02;              // session clock resolution
+  double command_period_s = 0.1;     // VEL + RVEL repeat period while moving (10 Hz)
+  double reconnect_initial_s = 0.5;  // transport reopen backoff after a failure
+  double reconnect_max_s = 4.0;
+  std::size_t max_pending_samples = 2000;
+  std::size_t max_pending_events = 1000;
+};
+
+// True when the URL asks for ARCOS (option protocol=arcos).
+bool isArcosUrl(const LinkUrl& url);
+
+// The VEL and RVEL arguments for a command: mm/s and deg/s, rounded, clamped to the limits
+// (and to the int argument range). Throws std::invalid_argument for a non-finite command.
+struct ArcosVelocityArguments {
+  int vel_mmps = 0;
+  int rvel_degps = 0;
+};
+ArcosVelocityArguments arcosVelocityArguments(const VelocityCommand& command,
+                                              const MotionLimits& limits);
+
+class ArcosRobot final : public Robot {
+ public:
+  struct OpenResult {
+    std::unique_ptr<ArcosRobot> robot;  // null when error is set
+    std::string error;
+  };
+  // Creates the transport and starts connecting; it reconnects on its own from then on.
+  static OpenResult open(IoThread& io, const LinkUrl& url, RobotProfile profile,
+                         ArcosRobotConfig config = {});
+  // The same, keeping `io` alive until the robot is destroyed (for owners that may outlive the
+  // code that created the thread, like the GUI session).
+  static OpenResult open(std::shared_ptr<IoThread> io, const LinkUrl& url, RobotProfile profile,
+                         ArcosRobotConfig config = {});
+  ~ArcosRobot() override;
+  ArcosRobot(const ArcosRobot&) = delete;
+  ArcosRobot& operator=(const ArcosRobot&) = delete;
+
+  // Robot
+  const RobotProfile& profile() const override;
+  std::string describe() const override;  // "tcp://... (connected: irgs-robot Pioneer p3dx-sh)"
+  void drive(const VelocityCommand& command) override;
+  void stop() override;
+  std::vector<TelemetrySample> update(double wall_elapsed_s) override;
+
+  // For the console, the link-health panel and irgs-sim (same vocabulary as LinkedRobot).
+  LinkState linkState() const;
+  LinkStats linkStats() const;
+  std::vector<LinkEvent> takeEvents();
+  arcos::ArcosState sessionState() const;
+  std::optional<arcos::RobotIdentity> identity() const;  // from the last SYNC2 reply
+  std::uint64_t droppedSamples() const;
+  const ArcosParams& params() const { return params_; }
+
+  struct Impl;
+
+ private:
+  ArcosRobot(RobotProfile profile, std::string url_text, ArcosParams params,
+             std::shared_ptr<Impl> impl);
+  std::shared_ptr<IoThread> io_keepalive_;  // first: destroyed after impl_ has shut down
+  RobotProfile profile_;
+  std::string url_text_;
+  ArcosParams params_;
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace irgs::comms

@@ -1,0 +1,331 @@
+// The virtual Pioneer (ArcosFirmware) driven by a fake client on a fake clock: the handshake,
+// driving, the PULSE watchdog, SETO/HEAD/VEL2, and 15-bit odometry wrap-around over > 32.8 m
+// read back through the client-side converter.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/robot/arcos_firmware.hpp"
+#include "comms/arcos/arcos_commands.hpp"
+#include "comms/arcos/arcos_packet.hpp"
+#include "comms/arcos/arcos_sip.hpp"
+#include "comms/robot/arcos_telemetry.hpp"
+#include "core/robot/robot_profile_file.hpp"
+#include "core/sim/sim_presets.hpp"
+
+namespace irgs::app {
+namespace {
+
+namespace arcos = comms::arcos;
+using arcos::Command;
+
+RobotProfile pioneer(const std::string& model) {
+  auto loaded = loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_" +
+                                     model + ".json");
+  if (!loaded.profile)
+    throw std::runtime_error("cannot load pioneer_" + model);
+  return *loaded.profile;
+}
+
+// A 10 m room around the origin, or nothing at all (open space for long drives).
+WorldMap room(bool walls) {
+  WorldMap map;
+  if (walls) {
+    Wall box;
+    box.id = "box";
+    box.points = {Vec2(-5, -5), Vec2(5, -5), Vec2(5, 5), Vec2(-5, 5)};
+    box.closed = true;
+    map.walls.push_back(box);
+  }
+  return map;
+}
+
+struct Client {
+  explicit Client(const std::string& model = "p3dx", bool walls = true,
+                  ArcosFirmwareConfig config = {})
+      : fw(Simulator(room(walls), pioneer(model), idealSimConfig(SimConfig{})), config) {}
+
+  void send(const std::vector<std::uint8_t>& packet) { fw.receiveBytes(packet, t); }
+  void command(Command c) { send(arcos::commandPacket(c)); }
+  void command(Command c, int arg) { send(arcos::commandPacket(c, arg)); }
+  // Advances the fake clock in 10 ms steps, decoding everything the firmware writes.
+  void run(double seconds, double pulse_period_s = 0.0) {
+    const double end = t + seconds;
+    double next_pulse = t + pulse_period_s;
+    while (t < end - 1e-9) {
+      t += 0.01;
+      if (pulse_period_s > 0.0 && t >= next_pulse - 1e-6) {
+        send(arcos::commandPacket(arcos::kPulse));
+        next_pulse += pulse_period_s;
+      }
+      fw.advance(t);
+      std::vector<std::uint8_t> out = fw.takeOutput();
+      decoder.feed(out, packets);
+    }
+  }
+  std::vector<arcos::StandardSip> takeSips() {
+    std::vector<arcos::StandardSip> sips;
+    for (const auto& p : packets) {
+      if (arcos::isStandardSipType(p.type())) {
+        auto parsed = arcos::parseStandardSip(p.payload());
+        EXPECT_TRUE(parsed.sip.has_value()) << parsed.error;
+        if (parsed.sip)
+          sips.push_back(*parsed.sip);
+      }
+    }
+    packets.clear();
+    return sips;
+  }
+  void handshake() {
+    send(arcos::commandPacket(arcos::kPulse));
+    send(arcos::commandPacket(1));
+    send(arcos::commandPacket(2));
+    send(arcos::commandPacket(arcos::kOpen));
+    fw.takeOutput();
+    ASSERT_EQ(fw.state(), ArcosServerState::kOpen);
+  }
+
+  ArcosFirmware fw;
+  double t = 0.0;
+  arcos::PacketDecoder decoder;
+  std::vector<arcos::Packet> packets;
+};
+
+TEST(ArcosFirmware, AnswersTheSyncHandshakeWithNameClassAndSubclass) {
+  Client c;
+  c.send(arcos::commandPacket(1));  // SYNC1 before SYNC0: ignored
+  EXPECT_TRUE(c.fw.takeOutput().empty());
+  c.send(arcos::commandPacket(arcos::kPulse));
+  EXPECT_EQ(c.fw.takeOutput(), (std::vector<std::uint8_t>{0xFA, 0xFB, 0x03, 0x00, 0x00, 0x00}));
+  c.send(arcos::commandPacket(1));
+  EXPECT_EQ(c.fw.takeOutput(), (std::vector<std::uint8_t>{0xFA, 0xFB, 0x03, 0x01, 0x00, 0x01}));
+  c.send(arcos::commandPacket(2));
+  std::vector<std::uint8_t> out = c.fw.takeOutput();
+  std::vector<arcos::Packet> packets;
+  c.decoder.feed(out, packets);
+  ASSERT_EQ(packets.size(), 1u);
+  const auto identity = arcos::parseSync2Reply(packets[0].payload());
+  ASSERT_TRUE(identity.has_value());
+  EXPECT_EQ(*identity, (arcos::RobotIdentity{"irgs-robot", "Pioneer", "p3dx-sh"}));
+  EXPECT_EQ(c.fw.state(), ArcosServerState::kSynced);
+
+  c.run(0.5);
+  EXPECT_TRUE(c.takeSips().empty()) << "no SIPs before OPEN";
+  c.send(arcos::commandPacket(arcos::kOpen));
+  c.run(1.0, 0.5);
+  const auto sips = c.takeSips();
+  EXPECT_GE(sips.size(), 9u);  // every 100 ms
+  EXPECT_LE(sips.size(), 11u);
+  EXPECT_EQ(sips.back().type, 0x32);  // stopped
+  EXPECT_TRUE(sips.back().motorsEnabled());
+}
+
+TEST(ArcosFirmware, AmigoBotReportsItsOwnSubclassAndEightSonars) {
+  Client c("amigo");
+  c.handshake();
+  c.run(2.0, 0.5);
+  std::set<int> seen;
+  for (const auto& sip : c.takeSips())
+    for (const auto& r : sip.sonars)
+      seen.insert(r.index);
+  EXPECT_EQ(seen.size(), 8u);
+  EXPECT_EQ(*seen.rbegin(), 7);
+}
+
+TEST(ArcosFirmware, VelAndRvelDriveTheSimulatorAndSipsReportIt) {
+  Client c;
+  c.handshake();
+  c.command(Command::kVel, 300);
+  c.run(3.0, 0.5);
+  const auto sips = c.takeSips();
+  ASSERT_FALSE(sips.empty());
+  EXPECT_EQ(sips.back().type, 0x33);  // moving
+  EXPECT_NEAR(sips.back().left_velocity, 300, 2);
+  EXPECT_NEAR(sips.back().right_velocity, 300, 2);
+  // 0.3 m/s reached after 1 s at 0.3 m/s^2: 0.15 + 0.6 m in 3 s.
+  EXPECT_NEAR(c.fw.reportedPose().x, 0.75, 0.03);
+  EXPECT_NEAR(sips.back().x_raw, c.fw.reportedPose().x * 1000.0, 35.0);
+
+  c.command(Command::kVel, 0);
+  c.command(Command::kRVel, 30);
+  c.run(2.0, 0.5);
+  const auto turning = c.takeSips();
+  EXPECT_NEAR(*turning.back().rotational_velocity, 300, 3);  // 0.1 deg/s units
+  EXPECT_GT(c.fw.reportedPose().theta, degToRad(30.0));
+}
+
+TEST(ArcosFirmware, StopsWhenNoCommandOrPulseArrivesForTheWatchdogTime) {
+  Client c;
+  c.handshake();
+  c.command(Command::kVel, 300);
+  c.run(1.9);  // no PULSE
+  EXPECT_GT(c.fw.simulator().trueVelocity().linear_mps, 0.25);
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 0u);
+  c.run(0.2);
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 1u);
+  EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0);
+  c.run(1.0);
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 1u) << "trips once";
+  EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0);
+  // A new motion command moves it again.
+  c.command(Command::kVel, 200);
+  c.run(1.0, 0.5);
+  EXPECT_GT(c.fw.simulator().trueVelocity().linear_mps, 0.15);
+}
+
+TEST(ArcosFirmware, WatchdogTimeIsConfigurable) {
+  ArcosFirmwareConfig config;
+  config.watchdog_s = 0.5;
+  Client c("p3dx", true, config);
+  c.handshake();
+  c.command(Command::kVel, 300);
+  c.run(0.45);
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 0u);
+  c.run(0.1);
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 1u);
+}
+
+TEST(ArcosFirmware, StopEstopCloseAndDisableStopTheRobot) {
+  for (int variant = 0; variant < 4; ++variant) {
+    Client c;
+    c.handshake();
+    c.command(Command::kVel, 300);
+    c.run(1.5, 0.5);
+    ASSERT_GT(c.fw.simulator().trueVelocity().linear_mps, 0.25);
+    if (variant == 0)
+      c.command(Command::kStop);
+    else if (variant == 1)
+      c.command(Command::kEStop);
+    else if (variant == 2)
+      c.send(arcos::commandPacket(arcos::kClose));
+    else
+      c.command(Command::kEnable, 0);
+    c.run(1.5, 0.5);
+    EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0) << "variant " << variant;
+  }
+}
+
+TEST(ArcosFirmware, DisabledMotorsIgnoreMotionCommandsUntilEnabled) {
+  Client c;
+  c.handshake();
+  c.command(Command::kEnable, 0);
+  c.command(Command::kVel, 300);
+  c.run(1.0, 0.5);
+  EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0);
+  EXPECT_FALSE(c.takeSips().back().motorsEnabled());
+  c.command(Command::kEnable, 1);
+  c.command(Command::kVel, 300);
+  c.run(1.0, 0.5);
+  EXPECT_GT(c.fw.simulator().trueVelocity().linear_mps, 0.2);
+}
+
+TEST(ArcosFirmware, HeadTurnsToAnAbsoluteHeadingAndSetoResetsTheOrigin) {
+  Client c;
+  c.handshake();
+  c.command(Command::kHead, 90);
+  c.run(4.0, 0.5);
+  EXPECT_NEAR(c.fw.reportedPose().theta, degToRad(90.0), degToRad(1.0));
+  EXPECT_NEAR(c.takeSips().back().theta_raw, std::lround(degToRad(90.0) / 0.001534), 12);
+  c.command(Command::kDHead, -45);
+  c.run(3.0, 0.5);
+  EXPECT_NEAR(c.fw.reportedPose().theta, degToRad(45.0), degToRad(1.0));
+  c.command(Command::kSetO);
+  c.run(0.2, 0.5);
+  EXPECT_NEAR(c.fw.reportedPose().theta, 0.0, 1e-9);
+  const auto sips = c.takeSips();
+  EXPECT_EQ(sips.back().x_raw, 0);
+  EXPECT_EQ(sips.back().theta_raw, 0);
+}
+
+TEST(ArcosFirmware, Vel2SetsTheWheelSpeedsInDivisorUnits) {
+  Client c;
+  c.handshake();
+  c.command(Command::kVel2, arcos::vel2Argument(10, 10));  // 200 mm/s each
+  c.run(2.0, 0.5);
+  EXPECT_NEAR(c.fw.simulator().trueVelocity().linear_mps, 0.2, 0.005);
+  // Spin in place, CCW: the negative left wheel makes the argument a negative int, as in ARIA.
+  c.command(Command::kVel2, arcos::vel2Argument(-5, 5));
+  c.run(2.0, 0.5);
+  EXPECT_NEAR(c.fw.simulator().trueVelocity().linear_mps, 0.0, 0.005);
+  EXPECT_GT(c.fw.simulator().trueVelocity().angular_radps, 0.3);
+}
+
+TEST(ArcosFirmware, MoveTravelsARelativeDistance) {
+  Client c;
+  c.handshake();
+  c.command(Command::kMove, 500);
+  c.run(5.0, 0.5);
+  EXPECT_NEAR(c.fw.reportedPose().x, 0.5, 0.01);
+  EXPECT_NEAR(c.fw.simulator().trueVelocity().linear_mps, 0.0, 1e-3);
+}
+
+TEST(ArcosFirmware, SonarReadingsArriveByDiscNumberAndSonarOffSilencesThem) {
+  Client c;
+  c.handshake();
+  c.run(1.0, 0.5);
+  int readings = 0;
+  for (const auto& sip : c.takeSips()) {
+    for (const auto& r : sip.sonars) {
+      ++readings;
+      EXPECT_LT(r.index, 16);
+      EXPECT_GT(r.range, 100);  // the room's walls are 4.4-7 m away; at most 5000 (no echo)
+      EXPECT_LE(r.range, 5000);
+    }
+  }
+  EXPECT_GE(readings, 30);  // 16 discs at 3.125 Hz for 1 s: ~50
+  c.command(Command::kSonar, 0);
+  c.run(1.0, 0.5);
+  for (const auto& sip : c.takeSips()) {
+    EXPECT_TRUE(sip.sonars.empty());
+    EXPECT_EQ(sip.flags & 0x1E, 0);
+  }
+}
+
+TEST(ArcosFirmware, GarbageAndBadCommandsAreCountedNotFatal) {
+  Client c;
+  c.handshake();
+  c.send({0xFA, 0xFB, 0x05, 0x0B, 0x3B, 0xC8, 0x00, 0x00});   // bad checksum
+  c.send({0xFA, 0xFB, 0x04, 0x0B, 0x99, 0x0B, 0x99 ^ 0x00});  // bad argument type
+  c.send({0x00, 0x13, 0xFA, 0x42});
+  std::vector<std::uint8_t> noise(500);
+  for (std::size_t i = 0; i < noise.size(); ++i)
+    noise[i] = static_cast<std::uint8_t>(i * 37 + 11);
+  c.send(noise);
+  c.run(0.5, 0.2);
+  EXPECT_GE(c.fw.stats().packets.bad_checksum + c.fw.stats().bad_commands, 1u);
+  EXPECT_EQ(c.fw.state(), ArcosServerState::kOpen);
+  EXPECT_FALSE(c.takeSips().empty());
+}
+
+TEST(ArcosFirmware, OdometryWrapsAt15BitsAndTheClientUnwrapsItOverFortyMetres) {
+  Client c("p3dx", /*walls=*/false);
+  comms::ArcosTelemetryConverter converter(
+      c.fw.simulator().profile(), comms::arcosParamsFromProfile(c.fw.simulator().profile()).params);
+  c.handshake();
+  c.command(Command::kVel, 2000);
+  int wraps = 0;
+  std::uint16_t last_raw = 0;
+  TelemetrySample last;
+  while (c.fw.reportedPose().x < 40.0) {
+    c.run(0.5, 0.5);
+    for (const auto& sip : c.takeSips()) {
+      if (sip.x_raw < last_raw)
+        ++wraps;
+      last_raw = sip.x_raw;
+      last = converter.convert(sip, c.t);
+    }
+    ASSERT_LT(c.t, 60.0);
+  }
+  EXPECT_EQ(wraps, 1);  // 32.768 m
+  EXPECT_GT(last.odometry_pose.x, 32.8);
+  EXPECT_NEAR(last.odometry_pose.x, c.fw.reportedPose().x, 0.25);  // SIP is up to 100 ms old
+  EXPECT_NEAR(last.odometry_pose.y, 0.0, 0.002);
+}
+
+}  // namespace
+}  // namespace irgs::app

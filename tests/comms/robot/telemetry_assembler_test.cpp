@@ -1,0 +1,366 @@
+// TelemetryAssembler, pure: frames from a real FirmwareCore (encoded, decoded) and hand-built
+// frames; no threads, no clock. Frame conventions are checked against what the firmware had.
+
+#include "comms/robot/telemetry_assembler.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <vector>
+
+#include "comms/mavlink/frame_decoder.hpp"
+#include "comms/mavlink/messages.hpp"
+#include "comms/robot/linked_robot.hpp"
+#include "tests/comms/link/link_test_support.hpp"
+#include "tests/comms/robot/robot_test_support.hpp"
+
+namespace irgs::comms {
+namespace {
+
+namespace mav = mavlink;
+using testing::frameOf;
+
+constexpr double kFloatTol = 2e-6;  // metres / radians: float precision over a few metres
+
+// Runs the firmware for `seconds` of robot time while a ground station (heartbeats, MANUAL_CONTROL
+// every 0.1 s) drives it with `x`, `r`, and feeds every frame it emits to `assembler`. Returns
+// the firmware's odometry pose at the end of each step, by boot time in ms, and the sonar frames.
+struct FirmwareRun {
+  std::map<std::int64_t, Pose2> odometry;
+  std::map<std::int64_t, std::vector<mav::DistanceSensor>> sonar;
+};
+
+FirmwareRun runFirmware(app::FirmwareCore& fw, TelemetryAssembler& assembler, double seconds,
+                        std::int16_t x, std::int16_t r) {
+  FirmwareRun run;
+  mav::FrameDecoder decoder;
+  std::vector<mav::Frame> frames;
+  mav::Heartbeat hb;
+  hb.type = static_cast<std::uint8_t>(mav::MavType::kGcs);
+  mav::ManualControl mc;
+  mc.x = x;
+  mc.r = r;
+  const double dt = fw.simulator().config().dt_s;
+  const int steps = static_cast<int>(std::lround(seconds / dt));
+  for (int i = 0; i < steps; ++i) {
+    const double t = fw.simulator().time_s();
+    if (i % 50 == 0)
+      fw.receive(frameOf(hb, 255, 190), t);
+    if (i % 10 == 0)
+      fw.receive(frameOf(mc, 255, 190), t);
+    fw.advance(t + dt);
+    const auto ms = std::llround(fw.simulator().time_s() * 1000.0);
+    run.odometry[ms] = fw.simulator().odometryPose();
+    frames.clear();
+    decoder.feed(fw.takeOutput(), frames);
+    for (const auto& f : frames) {
+      if (const auto ds = f.as<mav::DistanceSensor>())
+        run.sonar[ds->time_boot_ms].push_back(*ds);
+      assembler.onFrame(f, fw.simulator().time_s());
+    }
+    assembler.tick(fw.simulator().time_s());
+  }
+  return run;
+}
+
+void expectPosesMatch(const std::vector<TelemetrySample>& samples, const FirmwareRun& run) {
+  for (const auto& s : samples) {
+    const auto it = run.odometry.find(std::llround(s.time_s * 1000.0));
+    ASSERT_NE(it, run.odometry.end()) << "no firmware step at " << s.time_s;
+    EXPECT_NEAR(s.odometry_pose.x, it->second.x, kFloatTol) << s.time_s;
+    EXPECT_NEAR(s.odometry_pose.y, it->second.y, kFloatTol) << s.time_s;
+    EXPECT_NEAR(wrapAngle(s.odometry_pose.theta - it->second.theta), 0.0, kFloatTol) << s.time_s;
+    EXPECT_FALSE(s.true_pose.has_value());
+  }
+}
+
+TEST(TelemetryAssembler, FullStreamGivesTheFirmwareOdometryAtTwentyHertzWithItsSonar) {
+  auto fw = testing::makeFirmware();
+  TelemetryAssembler assembler(testing::thesisRobot());
+  // Forward and turning right (r > 0 is clockwise): theta must decrease.
+  const FirmwareRun run = runFirmware(*fw, assembler, 3.0, 600, 300);
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 58u);                   // 3 s at 20 Hz, the last one still held
+  for (std::size_t i = 2; i < samples.size(); ++i)  // the first pose is at the first step
+    EXPECT_NEAR(samples[i].time_s - samples[i - 1].time_s, 0.05, 1e-9);
+  expectPosesMatch(samples, run);
+  EXPECT_GT(samples.back().odometry_pose.x - samples.front().odometry_pose.x, 0.2);
+  EXPECT_LT(wrapAngle(samples.back().odometry_pose.theta - samples.front().odometry_pose.theta),
+            -0.3);
+  EXPECT_GT(samples.back().measured_velocity.linear_mps, 0.1);
+  EXPECT_LT(samples.back().measured_velocity.angular_radps, -0.1);
+  EXPECT_GT(samples.back().left_ticks, samples.back().right_ticks);  // turning right
+
+  // Every sample carries exactly the DISTANCE_SENSOR frames of its own time stamp.
+  const RobotProfile profile = testing::thesisRobot();
+  std::vector<int> per_sensor(profile.sonars.size(), 0);
+  for (const auto& s : samples) {
+    const auto it = run.sonar.find(std::llround(s.time_s * 1000.0));
+    const std::size_t expected = it == run.sonar.end() ? 0 : it->second.size();
+    ASSERT_EQ(s.sonar.size(), expected) << s.time_s;
+    for (std::size_t i = 0; i < expected; ++i) {
+      const auto& ds = it->second[i];
+      const SonarReading& r = s.sonar[i];
+      EXPECT_EQ(r.sensor, ds.id);
+      EXPECT_EQ(r.echo, ds.current_distance <= ds.max_distance);
+      if (r.echo) {
+        EXPECT_DOUBLE_EQ(r.range_m, ds.current_distance * 0.01);
+      }
+      ++per_sensor[static_cast<std::size_t>(r.sensor)];
+      // The index is the profile's: the frame's orientation is that sonar's mount (CW steps).
+      const double cw_deg =
+          -radToDeg(profile.sonars[static_cast<std::size_t>(r.sensor)].mount.theta);
+      const double steps = std::round(cw_deg / 45.0);
+      if (std::abs(cw_deg - steps * 45.0) <= 1.0) {
+        EXPECT_EQ(ds.orientation, ((static_cast<int>(steps) % 8) + 8) % 8);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < per_sensor.size(); ++i)
+    EXPECT_GE(per_sensor[i], 20) << "sonar " << i;
+  EXPECT_EQ(assembler.counters().ignored_readings, 0u);
+}
+
+TEST(TelemetryAssembler, OdometryMessageAloneGivesTheSamePoses) {
+  app::FirmwareConfig config;
+  config.send_local_position = false;
+  auto fw = testing::makeFirmware(config);
+  TelemetryAssembler assembler(testing::thesisRobot());
+  const FirmwareRun run = runFirmware(*fw, assembler, 2.0, -400, -500);  // back, turning left
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 38u);
+  expectPosesMatch(samples, run);
+  EXPECT_LT(samples.back().measured_velocity.linear_mps, -0.05);
+  EXPECT_GT(samples.back().measured_velocity.angular_radps, 0.1);
+}
+
+TEST(TelemetryAssembler, SlowLinkProfileUsesPose2dAndSonarScan) {
+  auto fw = testing::makeFirmware(app::slowLinkFirmwareConfig());
+  TelemetryAssembler assembler(testing::thesisRobot());
+  const FirmwareRun run = runFirmware(*fw, assembler, 3.0, 500, 0);
+  EXPECT_TRUE(run.sonar.empty());  // no DISTANCE_SENSOR in the compact profile
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 28u);  // 10 Hz
+  expectPosesMatch(samples, run);
+  std::size_t readings = 0;
+  std::vector<bool> seen(testing::thesisRobot().sonars.size(), false);
+  for (const auto& s : samples) {
+    for (const auto& r : s.sonar) {
+      ASSERT_GE(r.sensor, 0);
+      ASSERT_LT(static_cast<std::size_t>(r.sensor), seen.size());
+      seen[static_cast<std::size_t>(r.sensor)] = true;
+      if (r.echo) {
+        EXPECT_GT(r.range_m, 0.0);
+      }
+    }
+    readings += s.sonar.size();
+  }
+  EXPECT_GE(readings, 8u * 10u);
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    EXPECT_TRUE(seen[i]) << "sonar " << i;
+}
+
+// ---- hand-built frames ----
+
+mav::Frame lpn(std::uint32_t ms, float x, float y_ned) {
+  mav::LocalPositionNed m;
+  m.time_boot_ms = ms;
+  m.x = x;
+  m.y = y_ned;
+  return frameOf(m);
+}
+
+mav::Frame att(std::uint32_t ms, float yaw_ned) {
+  mav::Attitude m;
+  m.time_boot_ms = ms;
+  m.yaw = yaw_ned;
+  return frameOf(m);
+}
+
+mav::Frame ds(std::uint32_t ms, std::uint8_t id, std::uint16_t cm, std::uint16_t max_cm = 400) {
+  mav::DistanceSensor m;
+  m.time_boot_ms = ms;
+  m.id = id;
+  m.current_distance = cm;
+  m.min_distance = 3;
+  m.max_distance = max_cm;
+  return frameOf(m);
+}
+
+TEST(TelemetryAssembler, NedPoseIsConvertedToOurFrame) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
+  assembler.onFrame(lpn(100, 1.5f, 0.25f), 0.0);
+  assembler.onFrame(att(100, 0.5f), 0.0);
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 1u);
+  EXPECT_DOUBLE_EQ(samples[0].time_s, 0.1);
+  EXPECT_NEAR(samples[0].odometry_pose.x, 1.5, 1e-7);
+  EXPECT_NEAR(samples[0].odometry_pose.y, -0.25, 1e-7);     // NED y is to the right
+  EXPECT_NEAR(samples[0].odometry_pose.theta, -0.5, 1e-7);  // NED yaw is clockwise
+}
+
+TEST(TelemetryAssembler, ByTimestampHoldsASampleForItsSonarUntilNewerDataOrTheHoldTime) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.hold_s = 0.1});
+  assembler.onFrame(lpn(100, 1.0f, 0.0f), 10.0);
+  assembler.onFrame(att(100, 0.0f), 10.0);
+  assembler.onFrame(ds(100, 2, 150), 10.01);
+  EXPECT_FALSE(assembler.hasReady());
+  assembler.onFrame(lpn(150, 1.1f, 0.0f), 10.05);  // next step: 100 is complete
+  auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 1u);
+  ASSERT_EQ(samples[0].sonar.size(), 1u);
+  EXPECT_EQ(samples[0].sonar[0].sensor, 2);
+  EXPECT_TRUE(samples[0].sonar[0].echo);
+  EXPECT_DOUBLE_EQ(samples[0].sonar[0].range_m, 1.5);
+
+  assembler.onFrame(att(150, 0.0f), 10.05);
+  assembler.onFrame(ds(150, 3, 401), 10.06);  // beyond max_distance: no echo
+  assembler.tick(10.1);
+  EXPECT_FALSE(assembler.hasReady());
+  assembler.tick(10.16);  // nothing newer for hold_s
+  samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 1u);
+  EXPECT_DOUBLE_EQ(samples[0].odometry_pose.x, static_cast<double>(1.1f));
+  ASSERT_EQ(samples[0].sonar.size(), 1u);
+  EXPECT_FALSE(samples[0].sonar[0].echo);
+  EXPECT_DOUBLE_EQ(samples[0].sonar[0].range_m, testing::thesisRobot().sonars[3].max_range_m);
+}
+
+TEST(TelemetryAssembler, ReleaseOnPoseCarriesLateReadingsToTheNextSample) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
+  assembler.onFrame(lpn(100, 1.0f, 0.0f), 0.0);
+  EXPECT_FALSE(assembler.hasReady());  // no heading yet
+  assembler.onFrame(att(100, 0.0f), 0.0);
+  EXPECT_EQ(assembler.takeReady().size(), 1u);
+  assembler.onFrame(ds(100, 1, 80), 0.0);
+  assembler.onFrame(lpn(100, 1.0f, 0.0f), 0.0);  // a duplicate pose of a released sample
+  EXPECT_EQ(assembler.counters().stale_poses, 1u);
+  assembler.onFrame(lpn(150, 1.2f, 0.0f), 0.0);
+  assembler.onFrame(att(150, 0.0f), 0.0);
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 1u);
+  EXPECT_DOUBLE_EQ(samples[0].time_s, 0.15);
+  ASSERT_EQ(samples[0].sonar.size(), 1u);
+  EXPECT_EQ(samples[0].sonar[0].sensor, 1);
+}
+
+TEST(TelemetryAssembler, UnknownSensorsAndZeroRangesAreCountedNotDelivered) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
+  assembler.onFrame(ds(100, 200, 100), 0.0);  // the thesis robot has 8 sonars
+  assembler.onFrame(ds(100, 0, 0), 0.0);
+  assembler.onFrame(ds(100, 0, 120), 0.0);
+  assembler.onFrame(lpn(100, 0.0f, 0.0f), 0.0);
+  assembler.onFrame(att(100, 0.0f), 0.0);
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 1u);
+  ASSERT_EQ(samples[0].sonar.size(), 1u);
+  EXPECT_EQ(samples[0].sonar[0].sensor, 0);
+  EXPECT_EQ(assembler.counters().ignored_readings, 2u);
+}
+
+TEST(TelemetryAssembler, ContactAndTicksAreCarriedToEverySample) {
+  const RobotProfile profile = testing::thesisRobot();
+  ASSERT_FALSE(profile.proximity.empty());
+  TelemetryAssembler assembler(profile, {.release_on_pose = true});
+  mav::IrgsContact contact;
+  contact.time_boot_ms = 90;
+  contact.bumpers = 0b101;
+  contact.proximity_count = static_cast<std::uint8_t>(profile.proximity.size());
+  contact.proximity.fill(std::numeric_limits<std::uint16_t>::max());
+  contact.proximity[0] = 120;
+  assembler.onFrame(frameOf(contact), 0.0);
+  mav::IrgsEncoderTicks ticks;
+  ticks.time_usec = 90'000;
+  ticks.left_ticks = -12345;
+  ticks.right_ticks = 678;
+  assembler.onFrame(frameOf(ticks), 0.0);
+  for (std::uint32_t ms : {100u, 150u}) {
+    assembler.onFrame(lpn(ms, 0.0f, 0.0f), 0.0);
+    assembler.onFrame(att(ms, 0.0f), 0.0);
+  }
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 2u);
+  for (const auto& s : samples) {
+    EXPECT_EQ(s.bumpers, 0b101u);
+    EXPECT_EQ(s.left_ticks, -12345);
+    EXPECT_EQ(s.right_ticks, 678);
+    ASSERT_EQ(s.proximity_m.size(), profile.proximity.size());
+    EXPECT_DOUBLE_EQ(s.proximity_m[0], 0.12);
+    if (profile.proximity.size() > 1) {
+      EXPECT_DOUBLE_EQ(s.proximity_m[1], profile.proximity[1].max_range_m);
+    }
+  }
+}
+
+TEST(TelemetryAssembler, ARobotRestartStartsTheTimeBaseOver) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
+  assembler.onFrame(lpn(60'000, 3.0f, 0.0f), 0.0);
+  assembler.onFrame(att(60'000, 0.0f), 0.0);
+  assembler.onFrame(lpn(20, 0.0f, 0.0f), 0.0);  // boot time far behind: rebooted
+  assembler.onFrame(att(20, 0.0f), 0.0);
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 2u);
+  EXPECT_DOUBLE_EQ(samples[1].time_s, 0.02);
+  EXPECT_EQ(assembler.counters().restarts, 1u);
+}
+
+TEST(TelemetryAssembler, RejectsANonPositiveHoldTime) {
+  EXPECT_THROW(TelemetryAssembler(testing::thesisRobot(), {.hold_s = 0.0}), std::invalid_argument);
+  EXPECT_THROW(TelemetryAssembler(testing::thesisRobot(),
+                                  {.hold_s = std::numeric_limits<double>::quiet_NaN()}),
+               std::invalid_argument);
+}
+
+TEST(LinkedRobotCommands, ManualControlScalesClampsAndFlipsTheYawSign) {
+  MotionLimits limits;
+  limits.max_speed_mps = 0.4;
+  limits.max_turn_rate_radps = 2.0;
+  auto mc = manualControlFor({0.2, 0.5}, limits, 1);
+  EXPECT_EQ(mc.target, 1);
+  EXPECT_EQ(mc.x, 500);
+  EXPECT_EQ(mc.r, -250);  // counter-clockwise is negative r
+  mc = manualControlFor({-1.0, -9.0}, limits);
+  EXPECT_EQ(mc.x, -1000);
+  EXPECT_EQ(mc.r, 1000);
+  EXPECT_THROW(manualControlFor({std::numeric_limits<double>::infinity(), 0.0}, limits),
+               std::invalid_argument);
+  limits.max_speed_mps = 0.0;
+  EXPECT_THROW(manualControlFor({0.1, 0.0}, limits), std::invalid_argument);
+}
+
+TEST(LinkedRobotCommands, BehavioursMapToTheDialectCommands) {
+  auto c = behaviourCommandLong(
+      {.kind = RobotBehaviourKind::kMoveDistance, .distance_m = -0.5, .speed_mps = 0.2});
+  EXPECT_EQ(c.command, 48100);
+  EXPECT_FLOAT_EQ(c.param1, -0.5f);
+  EXPECT_FLOAT_EQ(c.param2, 0.2f);
+  c = behaviourCommandLong(
+      {.kind = RobotBehaviourKind::kTurnAngle, .angle_rad = 1.0, .turn_rate_radps = 0.7});
+  EXPECT_EQ(c.command, 48101);
+  EXPECT_FLOAT_EQ(c.param1, 1.0f);
+  EXPECT_FLOAT_EQ(c.param2, 0.7f);
+  c = behaviourCommandLong({.kind = RobotBehaviourKind::kFollowWall,
+                            .distance_m = 0.4,
+                            .speed_mps = 0.1,
+                            .wall_on_left = false,
+                            .travel_m = 3.0});
+  EXPECT_EQ(c.command, 48102);
+  EXPECT_FLOAT_EQ(c.param1, 0.4f);
+  EXPECT_FLOAT_EQ(c.param2, 1.0f);  // IRGS_WALL_SIDE_RIGHT
+  EXPECT_FLOAT_EQ(c.param3, 0.1f);
+  EXPECT_FLOAT_EQ(c.param4, 3.0f);
+  EXPECT_EQ(behaviourCommandLong({.kind = RobotBehaviourKind::kStop}).command, 48103);
+  c = behaviourCommandLong({.kind = RobotBehaviourKind::kEmergencyStop, .engage = false});
+  EXPECT_EQ(c.command, 48104);
+  EXPECT_FLOAT_EQ(c.param1, 0.0f);
+  EXPECT_THROW(behaviourCommandLong({.kind = RobotBehaviourKind::kMoveDistance,
+                                     .distance_m = std::numeric_limits<double>::quiet_NaN()}),
+               std::invalid_argument);
+  EXPECT_THROW(behaviourCommandLong({.kind = RobotBehaviourKind::kMoveDistance, .speed_mps = -0.1}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace irgs::comms
