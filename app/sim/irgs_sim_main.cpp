@@ -1,10 +1,16 @@
 // irgs-sim: runs a scenario headless and writes its outputs (see --help).
 
+#include <signal.h>
+
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "app/sim/behaviour_run.hpp"
+#include "app/sim/linked_run.hpp"
+#include "app/sim/localization_run.hpp"
 #include "app/sim/sim_options.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/scenario/scenario_outputs.hpp"
@@ -36,6 +42,102 @@ std::filesystem::path bundledRobotProfile(const char* argv0) {
   return fs::path(IRGS_RESOURCE_DIR) / "robots/thesis_robot.json";
 }
 
+// ---- --connect: the same run against a linked robot (app/sim/linked_run.hpp) ----
+
+constexpr int kExitLink = 3;
+constexpr int kExitInterrupted = 130;
+std::atomic<bool> g_interrupted{false};  // lock-free: safe to set from a signal handler
+
+extern "C" void onInterrupt(int) {
+  g_interrupted.store(true);
+}
+
+int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
+  const auto robot_path = options.robot.empty() ? bundledRobotProfile(argv0) : options.robot;
+  auto robot = irgs::loadRobotProfileFile(robot_path);
+  printDiagnostics(robot.diagnostics);
+  if (!robot.profile) {
+    std::fprintf(stderr, "irgs-sim: cannot load robot profile %s\n", robot_path.string().c_str());
+    return kExitFiles;
+  }
+  irgs::app::LinkedRunSpec spec;
+  if (!options.script.empty()) {
+    auto script = irgs::loadDriveScriptFile(options.script);
+    printDiagnostics(script.diagnostics);
+    if (!script.script) {
+      std::fprintf(stderr, "irgs-sim: cannot load drive script %s\n",
+                   options.script.string().c_str());
+      return kExitFiles;
+    }
+    spec.script = std::move(*script.script);
+  }
+  spec.url = options.connect;
+  spec.profile = std::move(*robot.profile);
+  spec.duration_s = options.duration_s.value_or(
+      spec.script.empty() ? 60.0 : std::max(spec.script.lastTime_s(), 0.1));
+  spec.connect_timeout_s = options.connect_timeout_s;
+  spec.grid_resolution_m = options.grid_resolution_m;
+  spec.cancel = &g_interrupted;
+  if (!options.quiet)
+    spec.log = [](const std::string& line) {
+      std::printf("irgs-sim: %s\n", line.c_str());
+      std::fflush(stdout);  // live progress also when stdout is a pipe or a log file
+    };
+
+  struct sigaction action {};
+  action.sa_handler = onInterrupt;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+
+  const irgs::app::LinkedRunResult run = irgs::app::runLinkedScenario(spec);
+  if (!run.result) {
+    std::fprintf(stderr, "irgs-sim: %s\n", run.error.c_str());
+    return run.cancelled ? kExitInterrupted : kExitLink;
+  }
+  const std::string map_name =
+      options.map.empty() ? "linked robot" : options.map.filename().string();
+  const irgs::ScenarioRunInfo info{map_name + " via " + options.connect, spec.profile.name,
+                                   options.seed};
+  auto written = irgs::writeScenarioOutputs(*run.result, info, options.out);
+  if (written.error.empty()) {
+    // Same atomic pattern as the other outputs: a temporary file renamed into place.
+    const std::filesystem::path target = options.out / "link.json";
+    const std::filesystem::path temp = options.out / "link.json.tmp";
+    if (FILE* f = std::fopen(temp.c_str(), "wb")) {
+      const std::string text = irgs::app::linkedRunJson(spec, run);
+      const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+      if (std::fclose(f) == 0 && ok) {
+        std::error_code ec;
+        std::filesystem::rename(temp, target, ec);
+        if (ec)
+          written.error = "cannot write " + target.string() + ": " + ec.message();
+        else
+          written.written.push_back(target);
+      } else {
+        written.error = "cannot write " + temp.string();
+      }
+    } else {
+      written.error = "cannot write " + temp.string();
+    }
+  }
+  if (!written.error.empty()) {
+    std::fprintf(stderr, "irgs-sim: %s\n", written.error.c_str());
+    return kExitFiles;
+  }
+  if (!options.quiet) {
+    const auto& m = run.result->metrics;
+    std::printf(
+        "irgs-sim: %.1f s on %s, %llu samples, %.2f m driven (odometry), explored %.2f m2%s\n"
+        "  no ground truth from a linked robot: true_* columns repeat the odometry\n",
+        m.duration_s, options.connect.c_str(), static_cast<unsigned long long>(run.samples),
+        m.distance_travelled_m, m.explored_area_m2, run.cancelled ? " (interrupted)" : "");
+    for (const auto& path : written.written)
+      std::printf("  wrote %s\n", path.string().c_str());
+  }
+  return run.cancelled ? kExitInterrupted : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,6 +151,8 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
   const irgs::app::SimOptions& options = *parsed.options;
+  if (!options.connect.empty())
+    return runConnected(options, argv[0]);
 
   auto map = irgs::loadAnyMap(options.map);
   printDiagnostics(map.diagnostics);
@@ -63,6 +167,36 @@ int main(int argc, char** argv) {
   if (!robot.profile) {
     std::fprintf(stderr, "irgs-sim: cannot load robot profile %s\n", robot_path.string().c_str());
     return kExitFiles;
+  }
+
+  if (!options.localize.empty()) {
+    const auto outcome = irgs::app::runLocalizationMode(options, *map.map, *robot.profile);
+    if (!outcome.error.empty())
+      std::fprintf(stderr, "irgs-sim: %s\n", outcome.error.c_str());
+    if (!options.quiet && !outcome.summary.empty()) {
+      std::printf("irgs-sim: %s\n", outcome.summary.c_str());
+      for (const auto& path : outcome.written)
+        std::printf("  wrote %s\n", path.string().c_str());
+    }
+    return outcome.exit_code;
+  }
+
+  if (!options.behaviour.empty()) {
+    const auto clock = [] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+          .count();
+    };
+    const auto outcome = irgs::app::runBehaviourMode(options, *map.map, *robot.profile, clock);
+    if (!outcome.error.empty())
+      std::fprintf(stderr, "irgs-sim: %s\n", outcome.error.c_str());
+    if (!options.quiet || outcome.exit_code != 0) {
+      if (!outcome.summary.empty())
+        std::printf("irgs-sim: %s\n", outcome.summary.c_str());
+      if (!options.quiet)
+        for (const auto& path : outcome.written)
+          std::printf("  wrote %s\n", path.string().c_str());
+    }
+    return outcome.exit_code;
   }
 
   irgs::ScenarioSpec spec;

@@ -1,5 +1,6 @@
 #include "app/sim/sim_options.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -35,6 +36,7 @@ std::optional<Pose2> parseStart(const std::string& text) {
 
 std::string simUsage() {
   return R"(usage: irgs-sim --map FILE --out DIR [options]
+       irgs-sim --connect URL --out DIR [--script FILE] [options]
 
 Runs a scenario headless: the simulated robot drives a timed command script on a map while the
 live sonar grid is built, then writes the results.
@@ -49,11 +51,39 @@ live sonar grid is built, then writes the results.
   --resolution M    grid cell size in metres (default: 0.01)
   --ideal           no odometry error and no sensor noise
   --quiet           print nothing on success
+  --connect URL     run the script on a robot behind a MAVLink link instead of the simulator
+                    (serial:///dev/ttyUSB0?baud=115200, tcp://host:5760, udp://:14550); the
+                    script runs on the wall clock, the robot is stopped at the end and on
+                    Ctrl-C; --map is optional (only its name is recorded), --start, --ideal
+                    are refused. Also writes link.json (link statistics; no ground truth: the
+                    true_* columns repeat the odometry, the odometry error is null)
+  --connect-timeout S  seconds to wait for the robot's heartbeat and first odometry (10)
+  --behaviour B     a behaviour drives the robot instead of a script: mapbuild (autonomous
+                    sonar map building: wall following, loop closing, interior, obstacles),
+                    goal (A* on the map, path amendment, traveling in 15-degree turns; needs
+                    --goal) or coverage (spiral cleaning path). --duration is the time budget
+                    (default 3600). Also writes indices.csv (mapbuild: position indices) or
+                    plan.csv (the planned turning points); metrics.json gains a "behaviour"
+                    object (phases with times, turns, wall clock) and map_score (F1 of the
+                    built map against the true map), plan or coverage
+  --goal X,Y        goal position in metres for --behaviour goal
+  --route X,Y;X,Y   waypoints (metres) the robot drives in order for --localize ('/' may
+                    separate the points instead of ';')
+  --localize E      localization experiment with estimator E: ekf (stereo-sonar EKF of paper
+                    000 on the map's walls, corners and edges), dr (encoder dead reckoning) or
+                    encoder-gyro (paper 001 feedback filter, AUTOGYRO-level gyro). The robot
+                    drives the map's route graph (nodes in order, back to the first) at
+                    0.3 m/s, or --route, or --script. Writes localization_metrics.json (RMS, max and final
+                    errors of the estimate and of dead reckoning, NEES, accepted measurements)
+                    and localization.csv (truth, estimate, DR, errors, 1-sigma, NEES per 0.1 s)
   --help            this text
 
 Outputs: grid.pgm + grid.yaml (ROS map_server), grid.png (grid with the true path in blue and
 the odometry path in orange), metrics.json, trajectory.csv.
-Exit status: 0 success, 1 a file could not be read or written, 2 bad arguments.
+Exit status: 0 success, 1 a file could not be read or written, 2 bad arguments, 3 the linked
+robot never came up (--connect) or the behaviour failed (--behaviour: budget used up, goal
+unreachable; outputs written when the run took place), 130 interrupted (outputs written for
+what was run).
 )";
 }
 
@@ -103,6 +133,50 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
       if (!d || *d <= 0.0 || *d > 1.0e6)
         return fail("--duration wants seconds in (0, 1e6], got '" + value + "'");
       options.duration_s = *d;
+    } else if (arg == "--connect") {
+      if (value.find("://") == std::string::npos)
+        return fail("--connect wants a URL such as serial:///dev/ttyUSB0?baud=115200, got '" +
+                    value + "'");
+      options.connect = value;
+    } else if (arg == "--behaviour") {
+      if (value != "mapbuild" && value != "goal" && value != "coverage")
+        return fail("--behaviour wants mapbuild, goal or coverage, got '" + value + "'");
+      options.behaviour = value;
+    } else if (arg == "--localize") {
+      if (value != "ekf" && value != "dr" && value != "encoder-gyro")
+        return fail("--localize wants ekf, dr or encoder-gyro, got '" + value + "'");
+      options.localize = value;
+    } else if (arg == "--route") {
+      std::string list = value;  // ';' or '/' between points ('/' needs no shell quoting)
+      std::replace(list.begin(), list.end(), '/', ';');
+      std::stringstream points(list);
+      std::string point;
+      options.route.clear();
+      while (std::getline(points, point, ';')) {
+        const auto comma = point.find(',');
+        const auto x = parseDouble(point.substr(0, comma));
+        const auto y =
+            comma == std::string::npos ? std::nullopt : parseDouble(point.substr(comma + 1));
+        if (!x || !y)
+          return fail("--route wants X,Y;X,Y;... in metres (e.g. '15.9,0.775;15.9,-14.55'), got '" +
+                      value + "'");
+        options.route.emplace_back(*x, *y);
+      }
+      if (options.route.empty())
+        return fail("--route needs at least one X,Y waypoint");
+    } else if (arg == "--goal") {
+      const auto comma = value.find(',');
+      const auto x = parseDouble(value.substr(0, comma));
+      const auto y =
+          comma == std::string::npos ? std::nullopt : parseDouble(value.substr(comma + 1));
+      if (!x || !y)
+        return fail("--goal wants X,Y in metres (e.g. 4.5,2.0), got '" + value + "'");
+      options.goal = Vec2(*x, *y);
+    } else if (arg == "--connect-timeout") {
+      const auto t = parseDouble(value);
+      if (!t || *t <= 0.0 || *t > 3600.0)
+        return fail("--connect-timeout wants seconds in (0, 3600], got '" + value + "'");
+      options.connect_timeout_s = *t;
     } else if (arg == "--resolution") {
       const auto r = parseDouble(value);
       if (!r || *r < 0.005 || *r > 1.0)
@@ -112,8 +186,33 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
       return fail("unknown option '" + arg + "' (see --help)");
     }
   }
-  if (options.map.empty())
+  if (!options.connect.empty()) {
+    // A real robot's pose and sensors are its own: nothing to place, nothing to idealise.
+    if (options.start)
+      return fail("--start cannot move a linked robot (--connect); drive it there instead");
+    if (options.ideal)
+      return fail("--ideal has no meaning for a linked robot (--connect)");
+  } else if (options.map.empty()) {
     return fail("--map FILE is required (see --help)");
+  }
+  if (!options.behaviour.empty()) {
+    if (!options.connect.empty())
+      return fail("--behaviour runs in the simulator only; it cannot be combined with --connect");
+    if (!options.script.empty())
+      return fail("--behaviour drives the robot itself; it cannot be combined with --script");
+    if (options.behaviour == "goal" && !options.goal)
+      return fail("--behaviour goal needs --goal X,Y");
+  }
+  if (!options.localize.empty() && (!options.connect.empty() || !options.behaviour.empty()))
+    return fail(
+        "--localize runs its own route in the simulator; it cannot be combined with "
+        "--connect or --behaviour");
+  if (!options.route.empty() && options.localize.empty())
+    return fail("--route is only used with --localize");
+  if (!options.route.empty() && !options.script.empty())
+    return fail("--route and --script both drive the robot: give one");
+  if (options.goal && options.behaviour != "goal")
+    return fail("--goal is only used with --behaviour goal");
   if (options.out.empty())
     return fail("--out DIR is required (see --help)");
   return {options, false, {}};

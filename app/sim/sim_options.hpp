@@ -22,6 +22,16 @@ struct SimOptions {
   double grid_resolution_m = 0.01;
   bool ideal = false;  // no odometry error and no sensor noise
   bool quiet = false;
+  // --connect URL: drive a robot behind a MAVLink link instead of the in-process simulator.
+  std::string connect;
+  double connect_timeout_s = 10.0;  // --connect-timeout: link up and first sample
+  // --behaviour mapbuild|goal|coverage: a host behaviour drives the simulated robot instead of
+  // a script (app/sim/behaviour_run.hpp); --goal X,Y (metres) for "goal".
+  std::string behaviour;
+  std::optional<Vec2> goal;
+  // --localize ekf|dr|encoder-gyro: a localization experiment (app/sim/localization_run.hpp).
+  std::string localize;
+  std::vector<Vec2> route;  // --route X,Y;X,Y;...: waypoints for --localize (default: map graph)
 };
 
 struct SimOptionsResult {

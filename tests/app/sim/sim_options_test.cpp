@@ -61,5 +61,67 @@ TEST(SimOptions, BadArgumentsSayWhatIsWrong) {
   EXPECT_NE(parseSimOptions({"stray"}).error.find("stray"), std::string::npos);
 }
 
+TEST(SimOptions, BehaviourTakesMapbuildGoalOrCoverage) {
+  const auto r = parseSimOptions({"--map", "m", "--out", "o", "--behaviour", "mapbuild"});
+  ASSERT_TRUE(r.options) << r.error;
+  EXPECT_EQ(r.options->behaviour, "mapbuild");
+  const auto g =
+      parseSimOptions({"--map", "m", "--out", "o", "--behaviour", "goal", "--goal", "4.5,-2"});
+  ASSERT_TRUE(g.options) << g.error;
+  ASSERT_TRUE(g.options->goal);
+  EXPECT_DOUBLE_EQ(g.options->goal->x(), 4.5);
+  EXPECT_DOUBLE_EQ(g.options->goal->y(), -2.0);
+  EXPECT_TRUE(parseSimOptions({"--map", "m", "--out", "o", "--behaviour", "coverage"}).options);
+}
+
+TEST(SimOptions, BehaviourRefusesWhatItCannotRun) {
+  const auto error = [](std::vector<std::string> args) { return parseSimOptions(args).error; };
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--behaviour", "dance"}).find("mapbuild"),
+            std::string::npos);
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--behaviour", "goal"}).find("--goal"),
+            std::string::npos);
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--behaviour", "goal", "--goal", "1"}).find("X,Y"),
+            std::string::npos);
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--goal", "1,2"}).find("--behaviour goal"),
+            std::string::npos);
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--behaviour", "mapbuild", "--script", "s"})
+                .find("--script"),
+            std::string::npos);
+  EXPECT_NE(
+      error({"--connect", "tcp://h:1", "--out", "o", "--behaviour", "mapbuild"}).find("--connect"),
+      std::string::npos);
+}
+
+}  // namespace
+}  // namespace irgs::app
+
+namespace irgs::app {
+namespace {
+
+TEST(SimOptions, ConnectTakesAUrlAndMakesTheMapOptional) {
+  const auto r = parseSimOptions(
+      {"--connect", "serial:///dev/pts/7?baud=115200", "--out", "o", "--connect-timeout", "2.5"});
+  ASSERT_TRUE(r.options) << r.error;
+  EXPECT_EQ(r.options->connect, "serial:///dev/pts/7?baud=115200");
+  EXPECT_DOUBLE_EQ(r.options->connect_timeout_s, 2.5);
+  EXPECT_TRUE(r.options->map.empty());
+  EXPECT_DOUBLE_EQ(parseSimOptions({"--map", "m", "--out", "o"}).options->connect_timeout_s, 10.0);
+}
+
+TEST(SimOptions, ConnectRefusesWhatOnlyTheSimulatorCanDo) {
+  EXPECT_NE(parseSimOptions({"--connect", "/dev/ttyUSB0", "--out", "o"}).error.find("URL"),
+            std::string::npos);
+  EXPECT_NE(parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--start", "1,2,0"})
+                .error.find("--start"),
+            std::string::npos);
+  EXPECT_NE(
+      parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--ideal"}).error.find("--ideal"),
+      std::string::npos);
+  EXPECT_NE(parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--connect-timeout", "0"})
+                .error.find("--connect-timeout"),
+            std::string::npos);
+  EXPECT_NE(parseSimOptions({"--connect", "tcp://h:1"}).error.find("--out"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace irgs::app

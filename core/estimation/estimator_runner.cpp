@@ -1,0 +1,295 @@
+#include "core/estimation/estimator_runner.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/estimation/stereo_measurement_model.hpp"
+#include "core/sim/diff_drive.hpp"
+
+namespace irgs {
+namespace {
+
+// SimRandom purpose of the runner's echo stream (distinct from the simulator's 1..4).
+constexpr std::uint64_t kEchoStream = 0x5E0E;
+
+void require(bool ok, const std::string& what) {
+  if (!ok)
+    throw std::invalid_argument("EstimatorRunner: " + what);
+}
+
+bool finitePose(const Pose2& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta);
+}
+
+LocCov initialCovariance(const EstimatorRunnerConfig& c) {
+  LocCov p = LocCov::Zero();
+  const double sp = c.initial_position_stddev_m, sh = c.initial_heading_stddev_rad;
+  p.diagonal() << sp * sp, sp * sp, sh * sh;
+  return p;
+}
+
+EncoderGyroFilterConfig filterConfig(const EstimatorRunnerConfig& c, double wheelbase_m) {
+  EncoderGyroFilterConfig f = c.encoder_gyro;
+  f.wheelbase_m = wheelbase_m;
+  return f;
+}
+
+}  // namespace
+
+const char* toString(EstimatorKind kind) {
+  switch (kind) {
+    case EstimatorKind::kDeadReckoning:
+      return "dr";
+    case EstimatorKind::kStereoEkf:
+      return "ekf";
+    case EstimatorKind::kEncoderGyro:
+      return "encoder-gyro";
+  }
+  return "?";
+}
+
+std::optional<EstimatorKind> parseEstimatorKind(std::string_view name) {
+  for (EstimatorKind k :
+       {EstimatorKind::kDeadReckoning, EstimatorKind::kStereoEkf, EstimatorKind::kEncoderGyro})
+    if (name == toString(k))
+      return k;
+  return std::nullopt;
+}
+
+const char* displayName(EstimatorKind kind) {
+  switch (kind) {
+    case EstimatorKind::kDeadReckoning:
+      return "Dead reckoning (encoders)";
+    case EstimatorKind::kStereoEkf:
+      return "Stereo-sonar EKF (000)";
+    case EstimatorKind::kEncoderGyro:
+      return "Encoder + gyro filter (001)";
+  }
+  return "?";
+}
+
+std::vector<StereoSensor> defaultStereoSensors() {
+  // Right, left and front, as in the 000 corridor runs (tests/core/estimation).
+  return {{{0.0, -0.2, -kPi / 2}, 0.2}, {{0.0, 0.2, kPi / 2}, 0.2}, {{0.25, 0.0, 0.0}, 0.2}};
+}
+
+GyroCalibration idealGyroCalibration(const GyroErrorModel& model) {
+  GyroCalibration c;
+  c.bias.c0_dps = model.bias_c0_dps;
+  c.bias.c1_dps_per_c = model.bias_c1_dps_per_c;
+  c.bias.c2_dps_per_c2 = model.bias_c2_dps_per_c2;
+  c.scale.a1 = model.sf_a1;
+  c.scale.a2_per_dps = model.sf_a2_per_dps;
+  c.scale.a3_per_dps2 = model.sf_a3_per_dps2;
+  return c;
+}
+
+void validate(const EstimatorRunnerConfig& c) {
+  require(std::isfinite(c.initial_position_stddev_m) && c.initial_position_stddev_m > 0.0 &&
+              std::isfinite(c.initial_heading_stddev_rad) && c.initial_heading_stddev_rad > 0.0,
+          "initial stddevs must be finite and > 0");
+  require(std::isfinite(c.process.wheel_variance_per_m) && c.process.wheel_variance_per_m >= 0.0 &&
+              c.process.per_step.allFinite(),
+          "process noise must be finite and >= 0");
+  require(std::isfinite(c.stereo_period_s) && c.stereo_period_s > 0.0,
+          "stereo_period_s must be finite and > 0");
+  require(std::isfinite(c.max_step_travel_m) && c.max_step_travel_m > 0.0,
+          "max_step_travel_m must be finite and > 0");
+  require(!c.sensors.empty() || c.kind != EstimatorKind::kStereoEkf,
+          "the stereo EKF needs at least one sensor");
+  for (const StereoSensor& s : c.sensors)
+    require(std::isfinite(s.mount.x_m) && std::isfinite(s.mount.y_m) &&
+                std::isfinite(s.mount.phi_rad) && std::isfinite(s.half_baseline_m) &&
+                s.half_baseline_m > 0.0,
+            "sensor mounts must be finite with a half baseline > 0");
+  validate(c.ekf);
+  validate(c.sonar);
+}
+
+EstimatorRunner::EstimatorRunner(const WorldMap& map, const RobotProfile& profile,
+                                 const Pose2& initial_estimate, EstimatorRunnerConfig config)
+    : config_((validate(config), std::move(config))),
+      loc_map_(buildLocalizationMap(map)),
+      echoes_(map, config_.sonar, config_.echo_noise),
+      metres_per_tick_(profile.drive.metresPerTick()),
+      wheelbase_m_(profile.drive.wheelbase_m),
+      ekf_(LocState::Zero(), initialCovariance(config_), config_.ekf),
+      echo_rng_(SimRandom::stream(config_.seed, kEchoStream)) {
+  require(std::isfinite(metres_per_tick_) && metres_per_tick_ > 0.0,
+          "the profile's metres per tick must be finite and > 0");
+  require(std::isfinite(wheelbase_m_) && wheelbase_m_ > 0.0,
+          "the profile's wheelbase must be finite and > 0");
+  // The sonar's half baseline is the sensors' (one model of sensor): keep them consistent.
+  for (StereoSensor& s : config_.sensors)
+    s.half_baseline_m = config_.sonar.half_baseline_m;
+  if (config_.kind == EstimatorKind::kEncoderGyro)
+    validate(filterConfig(config_, wheelbase_m_));
+  reset(initial_estimate);
+}
+
+void EstimatorRunner::reset(const Pose2& initial_estimate) {
+  require(finitePose(initial_estimate), "non-finite initial pose");
+  initial_ = {initial_estimate.x, initial_estimate.y, wrapAngle(initial_estimate.theta)};
+  ekf_.reset(toLocState(initial_), initialCovariance(config_));
+  encoder_gyro_.reset();
+  if (config_.kind == EstimatorKind::kEncoderGyro)
+    encoder_gyro_.emplace(filterConfig(config_, wheelbase_m_), initial_);
+  echo_rng_ = SimRandom::stream(config_.seed, kEchoStream);
+  has_baseline_ = false;
+  next_echo_s_ = -std::numeric_limits<double>::infinity();  // fire at the first sample
+  last_truth_.reset();
+  step_ = {};
+  step_.estimate = step_.dead_reckoning = initial_;
+  step_.covariance = ekf_.covariance();
+  step_.index = -1;
+  metrics_ = {};
+  sum_sq_pos_ = sum_sq_heading_ = sum_sq_dr_ = sum_nees_ = 0.0;
+  nees_within_ = 0;
+}
+
+const EstimatorStep& EstimatorRunner::feed(const TelemetrySample& sample) {
+  if (!std::isfinite(sample.time_s)) {
+    step_.note = "sample with a non-finite time ignored";
+    return step_;
+  }
+  const Pose2 previous_dr = step_.dead_reckoning;
+  const std::int64_t index = step_.index + 1;
+  step_ = {};
+  step_.index = index;
+  step_.time_s = sample.time_s;
+  step_.dead_reckoning = previous_dr;
+  if (sample.true_pose && finitePose(*sample.true_pose))
+    step_.truth = sample.true_pose;
+
+  const double d_left = static_cast<double>(sample.left_ticks - last_left_) * metres_per_tick_;
+  const double d_right = static_cast<double>(sample.right_ticks - last_right_) * metres_per_tick_;
+  const double dt = sample.time_s - last_time_s_;
+  if (!has_baseline_) {
+    step_.note = "baseline sample";
+  } else if (dt < 0.0) {
+    step_.note = "time went backwards: new baseline (robot replaced?)";
+  } else if (std::abs(d_left) > config_.max_step_travel_m ||
+             std::abs(d_right) > config_.max_step_travel_m) {
+    step_.note = "encoder jump between samples: new baseline (robot replaced?)";
+  } else if (dt > 0.0) {
+    step_.predicted = true;
+    step_.dead_reckoning =
+        integrateArc(previous_dr, 0.5 * (d_left + d_right), (d_right - d_left) / wheelbase_m_);
+    if (encoder_gyro_) {
+      std::optional<double> rate;
+      if (sample.gyro && !sample.gyro->saturated) {
+        rate = config_.gyro_calibration ? config_.gyro_calibration->compensateRadps(
+                                              sample.gyro->rate_radps, sample.gyro->temperature_c)
+                                        : sample.gyro->rate_radps;
+        ++metrics_.readings;
+      }
+      step_.encoder_gyro = encoder_gyro_->step({d_right, d_left, rate, dt});
+      if (step_.encoder_gyro->status == DrStepStatus::kUpdated)
+        ++metrics_.accepted;
+    } else if (ekf_.predictDiffDrive(d_left, d_right, wheelbase_m_, config_.process) !=
+               PredictStatus::kApplied) {
+      step_.note = "prediction rejected (non-finite increment)";
+    }
+  }
+  has_baseline_ = true;
+  last_left_ = sample.left_ticks;
+  last_right_ = sample.right_ticks;
+  last_time_s_ = sample.time_s;
+
+  if (config_.kind == EstimatorKind::kStereoEkf && step_.truth &&
+      sample.time_s + 1e-9 >= next_echo_s_) {
+    fireStereo(*step_.truth);
+    // A late sample (paused, or coarser than the period) does not trigger a burst of catch-up
+    // readings: the next firing is one period after this one.
+    next_echo_s_ = std::max(next_echo_s_ + config_.stereo_period_s,
+                            sample.time_s + 0.5 * config_.stereo_period_s);
+  }
+  finishStep(sample);
+  return step_;
+}
+
+void EstimatorRunner::fireStereo(const Pose2& truth) {
+  for (std::size_t i = 0; i < config_.sensors.size(); ++i) {
+    const StereoSensor& sensor = config_.sensors[i];
+    const SimulatedEcho echo =
+        echoes_.echo(sensorWorldPose(toLocState(truth), sensor.mount), echo_rng_);
+    StereoReadingRecord record;
+    record.sensor = i;
+    record.echo = echo.status;
+    if (echo.status != EchoStatus::kNoReflector)
+      record.true_reflector_id = echo.reflector_id;
+    if (echo.status == EchoStatus::kEcho) {
+      ++metrics_.readings;
+      record.update = ekf_.update(echo.paths, sensor, loc_map_);
+      record.accepted = record.update.status == UpdateStatus::kUpdated;
+      if (record.accepted)
+        ++metrics_.accepted;
+    }
+    step_.readings.push_back(std::move(record));
+  }
+}
+
+void EstimatorRunner::currentEstimate() {
+  if (encoder_gyro_) {
+    step_.estimate = encoder_gyro_->pose();
+    // The error states after feedback: (dx, dy, dpsi) is the pose error covariance.
+    step_.covariance = encoder_gyro_->covariance().block<3, 3>(kDrDx, kDrDx);
+  } else {
+    step_.estimate = ekf_.pose();
+    step_.covariance = ekf_.covariance();
+  }
+}
+
+void EstimatorRunner::finishStep(const TelemetrySample& sample) {
+  currentEstimate();
+  if (!step_.truth)
+    return;
+  const Pose2& truth = *step_.truth;
+  LocState e = toLocState(step_.estimate) - toLocState(truth);
+  e(kLocPhi) = wrapAngle(e(kLocPhi));
+  step_.error = e;
+  const Eigen::LLT<LocCov> llt(step_.covariance);
+  if (llt.info() == Eigen::Success && step_.covariance.allFinite()) {
+    const double nees = e.dot(llt.solve(e));
+    if (std::isfinite(nees)) {
+      step_.nees = nees;
+      sum_nees_ += nees;
+      ++metrics_.nees_steps;
+      if (nees <= kChi2Dof3P95)
+        ++nees_within_;
+    }
+  }
+  const double pos = e.head<2>().norm();
+  const double heading = std::abs(e(kLocPhi));
+  const double dr_pos = (step_.dead_reckoning.position() - truth.position()).norm();
+  if (metrics_.steps == 0)
+    first_truth_time_s_ = sample.time_s;
+  metrics_.duration_s = sample.time_s - first_truth_time_s_;
+  if (last_truth_)
+    metrics_.distance_m += (truth.position() - last_truth_->position()).norm();
+  last_truth_ = truth;
+  ++metrics_.steps;
+  sum_sq_pos_ += pos * pos;
+  sum_sq_heading_ += heading * heading;
+  sum_sq_dr_ += dr_pos * dr_pos;
+  const double n = static_cast<double>(metrics_.steps);
+  metrics_.rms_position_error_m = std::sqrt(sum_sq_pos_ / n);
+  metrics_.rms_heading_error_rad = std::sqrt(sum_sq_heading_ / n);
+  metrics_.dr_rms_position_error_m = std::sqrt(sum_sq_dr_ / n);
+  metrics_.max_position_error_m = std::max(metrics_.max_position_error_m, pos);
+  metrics_.final_position_error_m = pos;
+  metrics_.final_heading_error_rad = heading;
+  metrics_.dr_final_position_error_m = dr_pos;
+  metrics_.dr_final_heading_error_rad =
+      std::abs(wrapAngle(step_.dead_reckoning.theta - truth.theta));
+  if (metrics_.nees_steps > 0) {
+    metrics_.mean_nees = sum_nees_ / static_cast<double>(metrics_.nees_steps);
+    metrics_.nees_within_95 =
+        static_cast<double>(nees_within_) / static_cast<double>(metrics_.nees_steps);
+  }
+}
+
+}  // namespace irgs

@@ -1,0 +1,182 @@
+#pragma once
+// Runs one localization estimator on a stream of simulator telemetry and exposes each step's
+// result: the GUI's localization panel and `irgs-sim --localize` both drive it.
+//
+// Estimators (EstimatorKind):
+//   * kDeadReckoning: encoder odometry only, propagated through the EKF's prediction (so it
+//     has a covariance that grows without bound: the baseline every filter is judged against);
+//   * kStereoEkf: the paper-000 EKF (ekf_localizer.hpp) predicted from the encoder increments
+//     and updated with stereo-sonar echoes simulated on the map from the TRUE pose
+//     (StereoEchoSimulator, own seeded stream), sensors fired every stereo_period_s;
+//   * kEncoderGyro: the paper-001 indirect feedback filter (encoder_gyro_filter.hpp) on the
+//     encoder increments and the sample's gyro reading, calibrated with gyro_calibration.
+//
+// Every sample is used once, in order: the encoder increment is the tick difference to the
+// previous sample times the profile's metres per tick (nominal model, like the robot's own
+// odometry). A tick jump beyond max_step_travel_m or a time that goes backwards (a new robot)
+// re-baselines without predicting and is reported in the step's note. Stereo echoes need the
+// true pose: a sample without it (a linked robot) predicts only. Pure and deterministic.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/estimation/ekf_localizer.hpp"
+#include "core/estimation/encoder_gyro_filter.hpp"
+#include "core/estimation/gyro_calibration.hpp"
+#include "core/estimation/stereo_echo_sim.hpp"
+#include "core/robot/robot_profile.hpp"
+#include "core/robot/telemetry.hpp"
+#include "core/sim/gyro_sim.hpp"
+#include "core/world/world_map.hpp"
+
+namespace irgs {
+
+enum class EstimatorKind { kDeadReckoning, kStereoEkf, kEncoderGyro };
+
+// "dr", "ekf", "encoder-gyro" (the irgs-sim --localize names).
+const char* toString(EstimatorKind kind);
+std::optional<EstimatorKind> parseEstimatorKind(std::string_view name);
+// Human-readable, for menus and plots: "Dead reckoning", "Stereo-sonar EKF (000)", ...
+const char* displayName(EstimatorKind kind);
+
+// The stereo sensors of the 000 runs: right, left (at +/-0.2 m, looking sideways) and front.
+std::vector<StereoSensor> defaultStereoSensors();
+
+// The calibration that removes exactly the deterministic part of a simulated gyro (temperature
+// bias and cubic scale factor): the random turn-on bias, scale factor and drift are left to the
+// filter, as after a perfect 001 calibration run.
+GyroCalibration idealGyroCalibration(const GyroErrorModel& model);
+
+struct EstimatorRunnerConfig {
+  EstimatorKind kind = EstimatorKind::kStereoEkf;
+  // Initial 1-sigma of the estimator's belief about the start pose (EKF and DR).
+  double initial_position_stddev_m = 0.05;
+  double initial_heading_stddev_rad = degToRad(2.0);
+  DiffDriveNoise process = {2e-4, LocCov::Zero()};  // EKF/DR prediction noise
+  EkfLocalizerConfig ekf;
+  std::vector<StereoSensor> sensors = defaultStereoSensors();
+  StereoSonarParams sonar;
+  StereoEchoNoise echo_noise = {0.002, 0.001, 0.05, degToRad(30.0), 0.2};
+  double stereo_period_s = 0.04;                    // 000: one reading per sensor every 40 ms
+  std::uint64_t seed = 1;                           // echo noise and dropouts
+  EncoderGyroFilterConfig encoder_gyro;             // wheelbase_m is taken from the profile
+  std::optional<GyroCalibration> gyro_calibration;  // empty: the raw gyro rate is used
+  double max_step_travel_m = 1.0;  // a larger tick jump between samples is a discontinuity
+};
+
+// Throws std::invalid_argument for non-finite or non-positive stddevs/periods, no sensors, or
+// what the EKF/filter/echo-simulator validation throws.
+void validate(const EstimatorRunnerConfig& config);
+
+// One stereo reading of one sensor and what the EKF did with it.
+struct StereoReadingRecord {
+  std::size_t sensor = 0;  // index into EstimatorRunnerConfig::sensors
+  EchoStatus echo = EchoStatus::kNoReflector;
+  std::string true_reflector_id;  // the reflector the simulator bounced off (truth)
+  LocalizationUpdate update;      // status kRejectedNonFinite when there was no echo
+  bool accepted = false;          // at least one scalar update applied
+};
+
+struct EstimatorStep {
+  double time_s = 0.0;
+  std::int64_t index = 0;  // samples fed since the last reset
+  bool predicted = false;  // false for the baseline sample and after a discontinuity
+  std::optional<Pose2> truth;
+  Pose2 estimate;
+  LocCov covariance = LocCov::Zero();         // of (x, y, theta), world frame
+  Pose2 dead_reckoning;                       // encoder DR through the nominal model, same start
+  std::vector<StereoReadingRecord> readings;  // kStereoEkf: the readings taken at this sample
+  std::optional<DrStepResult> encoder_gyro;   // kEncoderGyro: the filter's step
+  // Error estimate - truth (x, y, wrapped theta) and NEES e' P^-1 e, when truth is known and P
+  // is positive definite.
+  std::optional<LocState> error;
+  std::optional<double> nees;
+  std::string note;  // why the step did not predict, empty otherwise
+};
+
+// Running metrics over the steps with truth (the first, baseline step included).
+struct EstimatorMetrics {
+  std::int64_t steps = 0;  // with truth
+  double duration_s = 0.0;
+  double distance_m = 0.0;  // true path length
+  double rms_position_error_m = 0.0;
+  double rms_heading_error_rad = 0.0;
+  double max_position_error_m = 0.0;
+  double final_position_error_m = 0.0;
+  double final_heading_error_rad = 0.0;
+  double dr_rms_position_error_m = 0.0;
+  double dr_final_position_error_m = 0.0;
+  double dr_final_heading_error_rad = 0.0;
+  std::int64_t nees_steps = 0;
+  double mean_nees = 0.0;
+  double nees_within_95 = 0.0;  // fraction of nees_steps below chi2(3) 95 % = 7.815
+  std::int64_t readings = 0;    // stereo echoes received (kStereoEkf) / gyro samples
+  std::int64_t accepted = 0;    // applied updates
+  double acceptedFraction() const {
+    return readings > 0 ? static_cast<double>(accepted) / static_cast<double>(readings) : 0.0;
+  }
+};
+
+inline constexpr double kChi2Dof3P95 = 7.815;
+
+class EstimatorRunner {
+ public:
+  // Throws std::invalid_argument for an invalid config, a non-finite initial pose, or a profile
+  // with a non-positive wheelbase or metres per tick.
+  EstimatorRunner(const WorldMap& map, const RobotProfile& profile, const Pose2& initial_estimate,
+                  EstimatorRunnerConfig config);
+
+  // Restarts the estimator at `initial_estimate` (metrics and the echo stream too); the next
+  // sample is a new baseline. Throws std::invalid_argument for a non-finite pose.
+  void reset(const Pose2& initial_estimate);
+
+  // Processes one sample (see the file comment) and returns its step (valid until the next
+  // call). Samples with a non-finite time are ignored (the previous step is returned, with a
+  // note).
+  const EstimatorStep& feed(const TelemetrySample& sample);
+
+  const EstimatorStep& lastStep() const { return step_; }
+  const EstimatorMetrics& metrics() const { return metrics_; }
+  const EstimatorRunnerConfig& config() const { return config_; }
+  const LocalizationMap& localizationMap() const { return loc_map_; }
+  EstimatorKind kind() const { return config_.kind; }
+  const Pose2& initialEstimate() const { return initial_; }
+
+ private:
+  void finishStep(const TelemetrySample& sample);
+  void fireStereo(const Pose2& truth);
+  void currentEstimate();
+
+  EstimatorRunnerConfig config_;
+  LocalizationMap loc_map_;
+  StereoEchoSimulator echoes_;
+  double metres_per_tick_ = 0.0;
+  double wheelbase_m_ = 0.0;
+  Pose2 initial_;
+
+  EkfLocalizer ekf_;  // kStereoEkf and kDeadReckoning (prediction only)
+  std::optional<EncoderGyroFilter> encoder_gyro_;
+  SimRandom echo_rng_;
+
+  bool has_baseline_ = false;
+  std::int64_t last_left_ = 0;
+  std::int64_t last_right_ = 0;
+  double last_time_s_ = 0.0;
+  double next_echo_s_ = 0.0;
+  std::optional<Pose2> last_truth_;
+  double first_truth_time_s_ = 0.0;
+
+  EstimatorStep step_;
+  EstimatorMetrics metrics_;
+  double sum_sq_pos_ = 0.0;
+  double sum_sq_heading_ = 0.0;
+  double sum_sq_dr_ = 0.0;
+  double sum_nees_ = 0.0;
+  std::int64_t nees_within_ = 0;
+};
+
+}  // namespace irgs
