@@ -4,6 +4,8 @@
 #include <QRegularExpression>
 #include <cmath>
 
+#include "comms/link/link_url.hpp"
+
 namespace irgs::gui {
 namespace {
 
@@ -81,9 +83,30 @@ AppOptionsResult parseAppOptions(const QStringList& arguments) {
       QStringLiteral("speed"),
       QStringLiteral("Initial simulation speed factor: 1, 2, 10 or 0 (= max)."),
       QStringLiteral("FACTOR"));
+  const QCommandLineOption connect_option(
+      QStringLiteral("connect"),
+      QStringLiteral("Start linked to the robot at URL instead of the simulator, e.g. "
+                     "serial:///dev/ttyUSB0?baud=115200, serial:///dev/rfcomm0?baud=38400, "
+                     "tcp://192.168.4.1:5760, udp://:14550."),
+      QStringLiteral("URL"));
+  const QCommandLineOption control_option(
+      QStringLiteral("control-stdin"),
+      QStringLiteral("Read commands from stdin (drive V W, stop, move M, turn DEG, connect URL, "
+                     "simulator, status, quit); answers on stdout. For tests and scripts."));
+  const QCommandLineOption status_option(
+      QStringLiteral("status-interval"),
+      QStringLiteral("Print a status line (link state, telemetry rates, pose, explored area) on "
+                     "stdout every S seconds."),
+      QStringLiteral("S"));
+  const QCommandLineOption localize_option(
+      QStringLiteral("localize"),
+      QStringLiteral("Start localization with this estimator: ekf (stereo-sonar EKF), dr (dead "
+                     "reckoning) or encoder-gyro (the Localization menu does the same)."),
+      QStringLiteral("ESTIMATOR"));
   parser.addOptions({help_option, version_option, map_option, robot_option, seed_option,
                      settings_option, script_option, screenshot_option, screenshot_after_option,
-                     quit_after_option, window_size_option, speed_option});
+                     quit_after_option, window_size_option, speed_option, connect_option,
+                     control_option, status_option, localize_option});
 
   AppOptionsResult result;
   const auto fail = [&result](const QString& message) {
@@ -151,6 +174,26 @@ AppOptionsResult parseAppOptions(const QStringList& arguments) {
     if (!options.sim_speed || *options.sim_speed > 1000.0)
       return fail(QStringLiteral("--speed expects a factor in [0, 1000] (0 = max), got '%1'")
                       .arg(parser.value(speed_option)));
+  }
+  if (parser.isSet(connect_option)) {
+    options.connect_url = parser.value(connect_option).trimmed();
+    const comms::LinkUrlResult url = comms::parseLinkUrl(options.connect_url.toStdString());
+    if (!url.url)
+      return fail(QStringLiteral("--connect: %1").arg(QString::fromStdString(url.error)));
+  }
+  options.control_stdin = parser.isSet(control_option);
+  if (parser.isSet(localize_option)) {
+    options.localize = parser.value(localize_option);
+    if (options.localize != QLatin1String("ekf") && options.localize != QLatin1String("dr") &&
+        options.localize != QLatin1String("encoder-gyro"))
+      return fail(QStringLiteral("--localize expects ekf, dr or encoder-gyro, got '%1'")
+                      .arg(options.localize));
+  }
+  if (parser.isSet(status_option)) {
+    options.status_interval_s = parseNonNegative(parser.value(status_option));
+    if (!options.status_interval_s || *options.status_interval_s < 0.01)
+      return fail(QStringLiteral("--status-interval expects seconds >= 0.01, got '%1'")
+                      .arg(parser.value(status_option)));
   }
   result.options = options;
   return result;

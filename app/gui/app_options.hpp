@@ -21,6 +21,10 @@ struct AppOptions {
   std::optional<double> quit_after_s;  // wall-clock seconds; a guard for demos and tests
   std::optional<QSize> window_size;    // overrides the saved geometry (screenshots)
   std::optional<double> sim_speed;     // initial speed factor, 0 = max
+  QString connect_url;                 // start linked to this robot (serial://, tcp://, udp://)
+  bool control_stdin = false;          // read commands from stdin (stdin_control.hpp)
+  std::optional<double> status_interval_s;  // print status lines on stdout this often
+  QString localize;  // start this estimator: ekf, dr or encoder-gyro (empty: off)
 };
 
 struct AppOptionsResult {

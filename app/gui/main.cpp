@@ -2,7 +2,8 @@
 //
 //   irgs [--map FILE] [--robot FILE] [--seed N] [--settings FILE] [--drive-script FILE]
 //        [--screenshot PNG] [--screenshot-after SIM_SECONDS] [--quit-after S]
-//        [--window-size WxH] [--speed FACTOR]
+//        [--window-size WxH] [--speed FACTOR] [--connect URL] [--control-stdin]
+//        [--status-interval S]
 //
 // Exit codes: 0 normal; 1 a file could not be read or written; 2 bad arguments;
 // 3 --quit-after reached before the requested screenshot.
@@ -11,6 +12,7 @@
 #include <QDir>
 #include <QFileInfo>
 #include <QTextStream>
+#include <csignal>
 #include <exception>
 #include <memory>
 
@@ -19,10 +21,13 @@
 #include "app/gui/automation.hpp"
 #include "app/gui/drive_script_player.hpp"
 #include "app/gui/event_format.hpp"
+#include "app/gui/link_ui.hpp"
+#include "app/gui/localization_controller.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/session_controller.hpp"
 #include "app/gui/startup.hpp"
+#include "app/gui/stdin_control.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "core/sim/simulated_robot.hpp"
 
@@ -185,9 +190,19 @@ int main(int argc, char** argv) {
   if (options.sim_speed)
     session.setSpeedFactor(*options.sim_speed);
 
+  if (!options.connect_url.isEmpty()) {
+    const QString problem = window.linkUi().connectTo(options.connect_url);
+    if (!problem.isEmpty()) {
+      err() << "irgs: error: --connect " << options.connect_url << ": " << problem << '\n';
+      return kExitUsage;
+    }
+  }
+
   window.restoreSettings(kDefaultWindowSize);
   if (options.window_size)
     window.resize(*options.window_size);
+  if (!options.localize.isEmpty())
+    window.localization().setEstimator(irgs::parseEstimatorKind(options.localize.toStdString()));
 
   std::unique_ptr<DriveScriptPlayer> player;
   if (script) {
@@ -205,6 +220,12 @@ int main(int argc, char** argv) {
   // Automated runs leave the user's window layout alone: no saveSettings() here.
   QObject::connect(&automation, &Automation::finished, &app,
                    [](int code) { QApplication::exit(code); });
+
+  StdinControl control(session, window.linkUi());
+  QObject::connect(&control, &StdinControl::quitRequested, &app, [] { QApplication::exit(0); });
+  if (options.control_stdin || options.status_interval_s)
+    std::signal(SIGPIPE, SIG_IGN);  // a reader that went away must not kill the GUI
+  control.start(options.control_stdin, options.status_interval_s);
 
   window.show();
   session.start();

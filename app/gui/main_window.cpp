@@ -11,17 +11,23 @@
 #include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QTimer>
 #include <array>
 
 #include "app/gui/app_settings.hpp"
+#include "app/gui/link_ui.hpp"
+#include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
+#include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "app/gui/session_status_bar.hpp"
 #include "app/gui/shortcuts.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/command/command_panel.hpp"
 #include "widgets/console/console_widget.hpp"
+#include "widgets/link/link_health_panel.hpp"
+#include "widgets/planning/planning_panel.hpp"
 #include "widgets/teleop/keyboard_teleop.hpp"
 
 namespace irgs::gui {
@@ -87,8 +93,14 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   buildFileMenu();
   buildViewMenu();
   buildSimulationMenu();
+  localization_ = new LocalizationController(session_, *canvas_, *this);
   buildHelpMenu();
   status_ = new SessionStatusBar(*statusBar(), this);
+  // The link-health panel sits under the command panel (shown while a robot is linked).
+  link_ui_ = new LinkUi(session_, settings_, *panel_, *statusBar(), *this);
+  side_splitter_->insertWidget(1, &link_ui_->healthPanel());
+  side_splitter_->setStretchFactor(1, 0);
+  side_splitter_->setStretchFactor(2, 1);
   connectSession();
 
   teleop_ = new widgets::KeyboardTeleop(this);
@@ -96,6 +108,8 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   qApp->installEventFilter(teleop_);
   connect(teleop_, &widgets::KeyboardTeleop::commandChanged, &session_, &SessionController::drive);
   connect(teleop_, &widgets::KeyboardTeleop::stopPressed, &session_, &SessionController::stopRobot);
+  connect(teleop_, &widgets::KeyboardTeleop::stopPressed, planning_,
+          [this] { planning_->stopAll(tr("STOP pressed")); });
 
   status_timer_ = new QTimer(this);
   status_timer_->setInterval(250);
@@ -118,14 +132,19 @@ void MainWindow::buildLayout() {
   canvas_->setGrid(&session_.grid());
   panel_ = new widgets::CommandPanel(this);
   panel_->setMode(widgets::RobotMode::kSimulator);
-  panel_->setLinkedModeAvailable(
-      false, tr("Linked robots need the robot link (comms), which this build does not wire in "
-                "yet."));
   console_ = new widgets::ConsoleWidget(this);
 
   side_splitter_ = new QSplitter(Qt::Vertical, this);
   side_splitter_->setObjectName(QStringLiteral("sideSplitter"));
-  side_splitter_->addWidget(panel_);
+  // The command panel and the planning panel share the top of the side column as tabs.
+  planning_panel_ = new widgets::PlanningPanel(this);
+  planning_ = new PlanningController(session_, *canvas_, *planning_panel_, this);
+  control_tabs_ = new QTabWidget(this);
+  control_tabs_->setObjectName(QStringLiteral("controlTabs"));
+  control_tabs_->setDocumentMode(true);
+  control_tabs_->addTab(panel_, tr("Drive"));
+  control_tabs_->addTab(planning_panel_, tr("Plan"));
+  side_splitter_->addWidget(control_tabs_);
   side_splitter_->addWidget(console_);
   side_splitter_->setStretchFactor(0, 0);
   side_splitter_->setStretchFactor(1, 1);
@@ -241,6 +260,8 @@ void MainWindow::connectSession() {
 
   connect(panel_, &widgets::CommandPanel::driveRequested, &session_, &SessionController::drive);
   connect(panel_, &widgets::CommandPanel::stopRequested, &session_, &SessionController::stopRobot);
+  connect(panel_, &widgets::CommandPanel::stopRequested, planning_,
+          [this] { planning_->stopAll(tr("STOP pressed")); });
   connect(panel_, &widgets::CommandPanel::pausedChanged, &session_, &SessionController::setPaused);
   connect(panel_, &widgets::CommandPanel::stepRequested, &session_, &SessionController::singleStep);
   connect(panel_, &widgets::CommandPanel::simSpeedChanged, &session_,
@@ -249,14 +270,9 @@ void MainWindow::connectSession() {
           [this](double linear_mps, double angular_radps) {
             teleop_->setSpeeds(linear_mps, angular_radps);
           });
-  connect(panel_, &widgets::CommandPanel::modeRequested, this, [this](widgets::RobotMode mode) {
-    if (mode == widgets::RobotMode::kLinkedRobot) {
-      session_.report(EventLevel::kWarning,
-                      tr("Linked-robot mode is not available in this build; staying in the "
-                         "simulator"));
-      panel_->setMode(widgets::RobotMode::kSimulator);
-    }
-  });
+  // Simulator <-> robot link: LinkUi handles the mode switch; simulation-only actions follow
+  // the robot the session has.
+  connect(&session_, &SessionController::robotReplaced, this, &MainWindow::updateSimulationActions);
 
   connect(canvas_, &MapCanvas::cursorMoved, status_, &SessionStatusBar::setCursor);
   connect(&session_, &SessionController::ticked, status_,
@@ -337,10 +353,15 @@ void MainWindow::restoreSettings(const QSize& default_size) {
           settings_.value(settingsKey(settings_key::kMainSplitter)).toByteArray())) {
     main_splitter_->setSizes({std::max(400, width() - kSideColumnWidth), kSideColumnWidth});
   }
+  // Command panel, link-health panel (hidden unless linked), console. A state saved before the
+  // health panel existed has two sizes: lay out afresh then.
   if (!side_splitter_->restoreState(
-          settings_.value(settingsKey(settings_key::kSideSplitter)).toByteArray())) {
-    const int panel_height = panel_->sizeHint().height();
-    side_splitter_->setSizes({panel_height, std::max(200, height() - panel_height)});
+          settings_.value(settingsKey(settings_key::kSideSplitter)).toByteArray()) ||
+      side_splitter_->sizes().size() != 3 || side_splitter_->sizes().at(2) <= 0) {
+    const int panel_height = control_tabs_->sizeHint().height();
+    const int health_height = link_ui_->healthPanel().sizeHint().height();
+    side_splitter_->setSizes(
+        {panel_height, health_height, std::max(200, height() - panel_height - health_height)});
   }
   const double linear =
       settings_.value(settingsKey(settings_key::kLinearSpeed), panel_->linearSpeed()).toDouble();

@@ -9,6 +9,7 @@ class QAction;
 class QActionGroup;
 class QSettings;
 class QSplitter;
+class QTabWidget;
 class QTimer;
 
 namespace irgs::widgets {
@@ -16,11 +17,15 @@ class CommandPanel;
 class ConsoleWidget;
 class KeyboardTeleop;
 class MapCanvas;
+class PlanningPanel;
 }  // namespace irgs::widgets
 
 namespace irgs::gui {
 
+class LinkUi;
+class LocalizationController;
 class MapFileActions;
+class PlanningController;
 class SessionController;
 class SessionStatusBar;
 
@@ -40,6 +45,14 @@ class MainWindow : public QMainWindow {
   widgets::ConsoleWidget& console() const { return *console_; }
   widgets::KeyboardTeleop& teleop() const { return *teleop_; }
   MapFileActions& mapFiles() const { return *map_files_; }
+  // The "Plan" tab beside the command panel: goal, coverage and map building.
+  widgets::PlanningPanel& planningPanel() const { return *planning_panel_; }
+  PlanningController& planning() const { return *planning_; }
+  QTabWidget& controlTabs() const { return *control_tabs_; }
+  // The robot link: mode switch, connection dialog, health panel, link state in the status bar.
+  LinkUi& linkUi() const { return *link_ui_; }
+  // The "Localization" menu and dock: estimator poses on the map, error plots.
+  LocalizationController& localization() const { return *localization_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -72,7 +85,12 @@ class MainWindow : public QMainWindow {
   widgets::KeyboardTeleop* teleop_ = nullptr;
   QSplitter* main_splitter_ = nullptr;
   QSplitter* side_splitter_ = nullptr;
+  QTabWidget* control_tabs_ = nullptr;  // "Drive" (command panel) and "Plan"
+  widgets::PlanningPanel* planning_panel_ = nullptr;
+  PlanningController* planning_ = nullptr;
   MapFileActions* map_files_ = nullptr;
+  LinkUi* link_ui_ = nullptr;
+  LocalizationController* localization_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

@@ -58,6 +58,16 @@ void SessionController::loadWorld(WorldMap map, const QString& source) {
              .arg(formatPose(map_.start)));
 }
 
+void SessionController::setRobotFactory(RobotFactory factory) {
+  if (!factory)
+    throw std::invalid_argument("SessionController needs a robot factory");
+  std::unique_ptr<Robot> robot = factory(map_, profile_);  // may throw: nothing changed yet
+  if (!robot)
+    throw std::logic_error("robot factory returned no robot");
+  factory_ = std::move(factory);
+  installRobot(std::move(robot));
+}
+
 std::unique_ptr<Robot> SessionController::makeRobot(const WorldMap& map) const {
   std::unique_ptr<Robot> robot = factory_(map, profile_);
   if (!robot)
@@ -201,6 +211,8 @@ void SessionController::advanceRobot(double wall_s, const QElapsedTimer& tick_cl
         step_s_ = std::clamp(sample.time_s - robot_time_s_, 1e-4, 1.0);
         robot_time_s_ = sample.time_s;
       }
+      if (sample_observer_)
+        sample_observer_(sample);
       pending_.push_back(std::move(sample));
     }
     if (max_speed) {

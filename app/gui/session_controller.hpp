@@ -59,6 +59,11 @@ class SessionController : public QObject {
   // Throws what the factory throws (a map the simulator cannot use); the session is then
   // unchanged.
   void loadWorld(WorldMap map, const QString& source);
+  // Replaces the robot factory and, with a robot from it, the robot (simulator <-> linked
+  // robot). Throws what the factory throws (std::invalid_argument for an empty factory); the
+  // session is then unchanged.
+  void setRobotFactory(RobotFactory factory);
+  const RobotFactory& robotFactory() const { return factory_; }
 
   const WorldMap& worldMap() const { return map_; }
   const QString& worldSource() const { return source_; }
@@ -81,6 +86,13 @@ class SessionController : public QObject {
   // commandScheduleFinished() emitted, once it reports no further change.
   void setCommandSchedule(CommandSchedule schedule);
   bool hasCommandSchedule() const { return static_cast<bool>(schedule_); }
+
+  // Called with every sample the robot produces, in order, as soon as advanceRobot() receives it
+  // (before the next schedule query and before the sample is integrated): a behaviour sees each
+  // sample exactly once and its answer applies from the next robot step. Times are session
+  // times. An empty function clears it.
+  using SampleObserver = std::function<void(const TelemetrySample& sample)>;
+  void setSampleObserver(SampleObserver observer) { sample_observer_ = std::move(observer); }
 
   // Starts/stops the periodic timer (tests drive tick() directly instead).
   void start();
@@ -145,6 +157,7 @@ class SessionController : public QObject {
   VelocityCommand command_;
 
   CommandSchedule schedule_;
+  SampleObserver sample_observer_;
   std::optional<VelocityCommand> last_scheduled_;
 
   std::deque<TelemetrySample> pending_;

@@ -27,6 +27,30 @@ TEST(AppOptions, DefaultsNeedNoArguments) {
   EXPECT_FALSE(r.options->quit_after_s.has_value());
 }
 
+TEST(AppOptions, ConnectTakesALinkUrlAndControlOptionsForScripts) {
+  const AppOptionsResult r = parse({"--connect", "serial:///dev/rfcomm0?baud=38400",
+                                    "--control-stdin", "--status-interval", "0.25"});
+  ASSERT_TRUE(r.options.has_value()) << r.message.toStdString();
+  EXPECT_EQ(r.options->connect_url, QStringLiteral("serial:///dev/rfcomm0?baud=38400"));
+  EXPECT_TRUE(r.options->control_stdin);
+  EXPECT_EQ(r.options->status_interval_s, std::optional<double>(0.25));
+  const AppOptionsResult plain = parse({});
+  ASSERT_TRUE(plain.options.has_value());
+  EXPECT_TRUE(plain.options->connect_url.isEmpty());
+  EXPECT_FALSE(plain.options->control_stdin);
+  EXPECT_FALSE(plain.options->status_interval_s.has_value());
+}
+
+TEST(AppOptions, ABadLinkUrlOrStatusIntervalIsAUsageError) {
+  const AppOptionsResult url = parse({"--connect", "ftp://robot"});
+  EXPECT_FALSE(url.options.has_value());
+  EXPECT_EQ(url.exit_code, 2);
+  EXPECT_TRUE(url.message.contains(QStringLiteral("--connect")));
+  const AppOptionsResult interval = parse({"--status-interval", "0"});
+  EXPECT_FALSE(interval.options.has_value());
+  EXPECT_EQ(interval.exit_code, 2);
+}
+
 TEST(AppOptions, ParsesEveryOption) {
   const AppOptionsResult r = parse({"--map",
                                     "m.json",

@@ -1,11 +1,13 @@
 #include "widgets/canvas/map_canvas.hpp"
 
 #include <QKeyEvent>
+#include <QLineF>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "widgets/canvas/canvas_palette.hpp"
 #include "widgets/canvas/finite_geometry.hpp"
@@ -73,6 +75,26 @@ void MapCanvas::setRobotState(const TelemetrySample& s) {
     viewWasChanged();
   }
   update();
+}
+
+void MapCanvas::setPlanningOverlay(PlanningOverlay overlay) {
+  overlay_ = std::move(overlay);
+  update();
+}
+
+void MapCanvas::setEstimatorOverlay(EstimatorOverlay overlay) {
+  estimator_overlay_ = std::move(overlay);
+  update();
+}
+
+void MapCanvas::setInteraction(Interaction interaction) {
+  if (interaction == interaction_)
+    return;
+  interaction_ = interaction;
+  region_from_.reset();
+  setCursor(interaction_ == Interaction::kNavigate ? Qt::CrossCursor : Qt::PointingHandCursor);
+  update();
+  emit interactionChanged(interaction_);
 }
 
 void MapCanvas::clearTrail() {
@@ -278,12 +300,18 @@ void MapCanvas::paintEvent(QPaintEvent* /*event*/) {
     p.drawPixmap(at, trail_cache_.pixmap());
     p.setOpacity(1.0);
   }
+  if (!overlay_.empty())
+    paintPlanningOverlay(p, v, overlay_);
   if (layerVisible(Layer::kSonar) && pose_)
     robot_.paintSonar(p, v, *pose_, sonar_, last_time_s_, kSonarStale_s);
   if (layerVisible(Layer::kTruth) && true_pose_)
     robot_.paintRobot(p, v, *true_pose_, bumpers_, true);
   if (pose_)
     robot_.paintRobot(p, v, *pose_, bumpers_, false);
+  if (!estimator_overlay_.empty())
+    paintEstimatorOverlay(p, v, estimator_overlay_);
+  if (region_from_)
+    paintRegionRubberBand(p, v, *region_from_, region_to_);
   paintScaleBar(p, scale_, height());
 }
 
@@ -298,6 +326,14 @@ void MapCanvas::resizeEvent(QResizeEvent* event) {
 }
 
 void MapCanvas::mousePressEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton && interaction_ == Interaction::kSelectRegion) {
+    region_from_ = widgetToWorld(event->position());
+    region_to_ = *region_from_;
+    event->accept();
+    return;
+  }
+  if (event->button() == Qt::LeftButton)
+    press_pos_ = event->position();
   if (event->button() == Qt::LeftButton || event->button() == Qt::MiddleButton) {
     dragging_ = true;
     last_mouse_ = event->position();
@@ -310,6 +346,10 @@ void MapCanvas::mousePressEvent(QMouseEvent* event) {
 
 void MapCanvas::mouseMoveEvent(QMouseEvent* event) {
   const QPointF pos = event->position();
+  if (region_from_) {
+    region_to_ = widgetToWorld(pos);
+    update();
+  }
   if (dragging_) {
     const QPointF delta = pos - last_mouse_;
     last_mouse_ = pos;
@@ -328,9 +368,32 @@ void MapCanvas::mouseMoveEvent(QMouseEvent* event) {
 }
 
 void MapCanvas::mouseReleaseEvent(QMouseEvent* event) {
+  if (region_from_ && event->button() == Qt::LeftButton) {
+    const Vec2 a = *region_from_;
+    const Vec2 b = widgetToWorld(event->position());
+    region_from_.reset();
+    update();
+    const double min_size_px = 2.0 * kClickSlop_px;
+    if (std::abs(a.x() - b.x()) * scale_ >= min_size_px &&
+        std::abs(a.y() - b.y()) * scale_ >= min_size_px) {
+      emit regionSelected(std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
+                          std::max(a.y(), b.y()));
+    }
+    event->accept();
+    return;
+  }
+  if (event->button() == Qt::LeftButton && interaction_ == Interaction::kPickGoal &&
+      QLineF(press_pos_, event->position()).length() <= kClickSlop_px) {
+    dragging_ = false;
+    setCursor(Qt::PointingHandCursor);
+    const Vec2 w = widgetToWorld(event->position());
+    emit worldClicked(w.x(), w.y());
+    event->accept();
+    return;
+  }
   if (dragging_ && (event->button() == Qt::LeftButton || event->button() == Qt::MiddleButton)) {
     dragging_ = false;
-    setCursor(Qt::CrossCursor);
+    setCursor(interaction_ == Interaction::kNavigate ? Qt::CrossCursor : Qt::PointingHandCursor);
     event->accept();
     return;
   }
@@ -378,6 +441,13 @@ void MapCanvas::keyPressEvent(QKeyEvent* event) {
       break;
     case Qt::Key_F:
       setFollowRobot(!follow_robot_);
+      break;
+    case Qt::Key_Escape:
+      if (interaction_ == Interaction::kNavigate) {
+        QWidget::keyPressEvent(event);
+        return;
+      }
+      setInteraction(Interaction::kNavigate);
       break;
     default:
       QWidget::keyPressEvent(event);

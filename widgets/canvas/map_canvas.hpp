@@ -11,6 +11,9 @@
 //
 // Interaction: drag with the left or middle button to pan, wheel to zoom about the cursor,
 // double-click or Home to fit, +/- to zoom about the centre, F to toggle following the robot.
+// Planning modes (setInteraction): "pick goal" turns a left click (press and release within a
+// few pixels) into worldClicked(); "select region" turns a left drag into regionSelected();
+// the middle button still pans and Escape returns to navigation.
 
 #include <QImage>
 #include <QPainterPath>
@@ -29,9 +32,11 @@
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
 #include "core/world/world_map.hpp"
+#include "widgets/canvas/estimator_overlay.hpp"
 #include "widgets/canvas/grid_tiles.hpp"
 #include "widgets/canvas/map_layers_painter.hpp"
 #include "widgets/canvas/map_view.hpp"
+#include "widgets/canvas/path_overlay.hpp"
 #include "widgets/canvas/robot_painter.hpp"
 #include "widgets/canvas/static_layer_cache.hpp"
 #include "widgets/canvas/trail_cache.hpp"
@@ -43,6 +48,9 @@ class MapCanvas : public QWidget {
 
  public:
   enum class Layer { kRaster, kGrid, kWalls, kFeatures, kCeiling, kGraph, kSonar, kTrail, kTruth };
+  enum class Interaction { kNavigate, kPickGoal, kSelectRegion };
+  // A press and release closer than this is a click, not a drag, px.
+  static constexpr double kClickSlop_px = 4.0;
 
   // Zoom limits, pixels per metre.
   static constexpr double kMinPixelsPerMetre = 0.2;
@@ -95,6 +103,16 @@ class MapCanvas : public QWidget {
   QPointF worldToWidget(const irgs::Vec2& p) const;
   irgs::Vec2 widgetToWorld(const QPointF& p) const;
 
+  // Planning overlay (paths, goal, region, position indices), drawn under the robot.
+  void setPlanningOverlay(PlanningOverlay overlay);
+  const PlanningOverlay& planningOverlay() const { return overlay_; }
+  void setInteraction(Interaction interaction);
+  Interaction interaction() const { return interaction_; }
+
+  // Localization overlay (estimator poses with ellipses, matched features), drawn over the robot.
+  void setEstimatorOverlay(EstimatorOverlay overlay);
+  const EstimatorOverlay& estimatorOverlay() const { return estimator_overlay_; }
+
   QSize sizeHint() const override { return {800, 600}; }
   QSize minimumSizeHint() const override { return {200, 150}; }
 
@@ -102,6 +120,11 @@ class MapCanvas : public QWidget {
   void cursorMoved(double x_m, double y_m);  // world coordinates under the mouse
   void viewChanged();
   void followRobotChanged(bool follow);  // also emitted when a drag ends following
+  // Pick-goal mode: a left click at this world point.
+  void worldClicked(double x_m, double y_m);
+  // Select-region mode: the dragged rectangle, world metres (x0 <= x1, y0 <= y1).
+  void regionSelected(double x0_m, double y0_m, double x1_m, double y1_m);
+  void interactionChanged(irgs::widgets::MapCanvas::Interaction interaction);
 
  protected:
   void paintEvent(QPaintEvent* event) override;
@@ -155,6 +178,14 @@ class MapCanvas : public QWidget {
   // Mouse drag.
   bool dragging_ = false;
   QPointF last_mouse_;
+
+  // Planning overlay and modes.
+  PlanningOverlay overlay_;
+  EstimatorOverlay estimator_overlay_;
+  Interaction interaction_ = Interaction::kNavigate;
+  QPointF press_pos_;                      // where the left button went down (pick goal)
+  std::optional<irgs::Vec2> region_from_;  // select region: drag start and current corner
+  irgs::Vec2 region_to_ = irgs::Vec2::Zero();
 };
 
 }  // namespace irgs::widgets

@@ -36,6 +36,7 @@ CommandPanel::CommandPanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(buildModeGroup());
   layout->addWidget(buildDriveGroup());
   layout->addWidget(buildSimulationGroup());
+  layout->addWidget(buildBehaviourGroup());
   layout->addStretch(1);
   setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Preferred);
 }
@@ -231,6 +232,55 @@ QGroupBox* CommandPanel::buildSimulationGroup() {
   return sim_group_;
 }
 
+QGroupBox* CommandPanel::buildBehaviourGroup() {
+  behaviour_group_ = new QGroupBox(tr("Robot behaviours"), this);
+  behaviour_group_->setObjectName(QStringLiteral("behaviours"));
+  behaviour_group_->setToolTip(
+      tr("Run by the robot's firmware on its odometry; STOP (Space) cancels them"));
+  move_spin_ = new QDoubleSpinBox(behaviour_group_);
+  move_spin_->setObjectName(QStringLiteral("behaviourDistance"));
+  move_spin_->setRange(-10.0, 10.0);
+  move_spin_->setSingleStep(0.1);
+  move_spin_->setDecimals(2);
+  move_spin_->setSuffix(tr(" m"));
+  move_spin_->setValue(1.0);
+  move_spin_->setToolTip(tr("Distance to drive straight (negative: reverse)"));
+  turn_spin_ = new QDoubleSpinBox(behaviour_group_);
+  turn_spin_->setObjectName(QStringLiteral("behaviourAngle"));
+  turn_spin_->setRange(-720.0, 720.0);
+  turn_spin_->setSingleStep(15.0);
+  turn_spin_->setDecimals(0);
+  turn_spin_->setSuffix(tr(" °"));
+  turn_spin_->setValue(90.0);
+  turn_spin_->setToolTip(tr("Angle to turn on the spot (positive: to the left)"));
+  auto* move_button = new QToolButton(behaviour_group_);
+  move_button->setObjectName(QStringLiteral("behaviourMove"));
+  move_button->setText(tr("Move"));
+  move_button->setFocusPolicy(Qt::NoFocus);
+  move_button->setMinimumWidth(64);
+  auto* turn_button = new QToolButton(behaviour_group_);
+  turn_button->setObjectName(QStringLiteral("behaviourTurn"));
+  turn_button->setText(tr("Turn"));
+  turn_button->setFocusPolicy(Qt::NoFocus);
+  turn_button->setMinimumWidth(64);
+  connect(move_button, &QToolButton::clicked, this,
+          [this] { emit moveDistanceRequested(behaviourDistance()); });
+  connect(turn_button, &QToolButton::clicked, this,
+          [this] { emit turnAngleRequested(behaviourAngle()); });
+  for (QDoubleSpinBox* spin : {move_spin_, turn_spin_}) {
+    spin->setKeyboardTracking(false);
+    spin->setAlignment(Qt::AlignRight);
+  }
+  auto* grid = new QGridLayout(behaviour_group_);
+  grid->addWidget(move_button, 0, 0);
+  grid->addWidget(move_spin_, 0, 1);
+  grid->addWidget(turn_button, 1, 0);
+  grid->addWidget(turn_spin_, 1, 1);
+  grid->setColumnStretch(1, 1);
+  behaviour_group_->setVisible(false);
+  return behaviour_group_;
+}
+
 void CommandPanel::updatePauseButton() {
   const bool paused = pause_button_->isChecked();
   pause_button_->setText(paused ? tr("Run") : tr("Pause"));
@@ -262,6 +312,22 @@ void CommandPanel::setLinkedModeAvailable(bool available, const QString& why_not
 
 void CommandPanel::setSimulationControlsEnabled(bool enabled) {
   sim_group_->setEnabled(enabled);
+}
+
+void CommandPanel::setBehavioursVisible(bool visible) {
+  behaviour_group_->setVisible(visible);
+}
+
+bool CommandPanel::behavioursVisible() const {
+  return !behaviour_group_->isHidden();
+}
+
+double CommandPanel::behaviourDistance() const {
+  return move_spin_->value();
+}
+
+double CommandPanel::behaviourAngle() const {
+  return degToRad(turn_spin_->value());
 }
 
 void CommandPanel::setPaused(bool paused) {

@@ -1,6 +1,7 @@
 #pragma once
 // The command panel: robot mode (simulator / linked robot), a press-and-hold drive pad with
-// speed settings, and simulation controls (run/pause, step, speed factor).
+// speed settings, simulation controls (run/pause, step, speed factor) and, for a linked robot,
+// the firmware behaviours (move a distance, turn an angle).
 //
 // Setters never emit signals (so the owner can mirror state without feedback loops); signals
 // are emitted only for user actions.
@@ -35,6 +36,12 @@ class CommandPanel : public QWidget {
   // Disables the "Robot link" choice, with `why_not` as its tooltip, when not available.
   void setLinkedModeAvailable(bool available, const QString& why_not);
   void setSimulationControlsEnabled(bool enabled);
+  // Shows the robot-behaviour group (linked robots run behaviours in their firmware).
+  void setBehavioursVisible(bool visible);
+  bool behavioursVisible() const;
+  // The distance (m, signed) and angle (rad, CCW positive) the behaviour buttons ask for.
+  double behaviourDistance() const;
+  double behaviourAngle() const;
   void setPaused(bool paused);
   bool paused() const;
   // 1, 2, 10 or 0 (= as fast as possible); other positive factors get their own entry.
@@ -55,6 +62,8 @@ class CommandPanel : public QWidget {
   void stepRequested();
   void simSpeedChanged(double factor);  // 1, 2, 10, 0 (= max)
   void driveSpeedsChanged(double linear_mps, double angular_radps);
+  void moveDistanceRequested(double distance_m);  // signed: negative reverses
+  void turnAngleRequested(double angle_rad);      // counter-clockwise positive
 
  private:
   // Direction of a drive button: multipliers of the linear and angular speed.
@@ -66,6 +75,7 @@ class CommandPanel : public QWidget {
   QGroupBox* buildModeGroup();
   QGroupBox* buildDriveGroup();
   QGroupBox* buildSimulationGroup();
+  QGroupBox* buildBehaviourGroup();
   QToolButton* makeDriveButton(Drive drive, DriveIcon icon, const QString& tooltip);
   void emitHeldDrive();
   void updatePauseButton();
@@ -80,6 +90,9 @@ class CommandPanel : public QWidget {
   QToolButton* pause_button_ = nullptr;
   QToolButton* step_button_ = nullptr;
   QComboBox* speed_combo_ = nullptr;
+  QGroupBox* behaviour_group_ = nullptr;
+  QDoubleSpinBox* move_spin_ = nullptr;  // m
+  QDoubleSpinBox* turn_spin_ = nullptr;  // deg
   bool held_ = false;
   Drive held_drive_;
 };

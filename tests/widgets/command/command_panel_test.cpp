@@ -113,5 +113,24 @@ TEST(CommandPanel, LinkedModeCanBeUnavailableWithAReason) {
   EXPECT_TRUE(linked->isEnabled());
 }
 
+TEST(CommandPanel, BehaviourButtonsAskForTheDistanceAndAngleSetAndAreHiddenInTheSimulator) {
+  CommandPanel panel;
+  EXPECT_FALSE(panel.behavioursVisible());
+  panel.setBehavioursVisible(true);
+  EXPECT_TRUE(panel.behavioursVisible());
+  QSignalSpy move(&panel, &CommandPanel::moveDistanceRequested);
+  QSignalSpy turn(&panel, &CommandPanel::turnAngleRequested);
+  child<QDoubleSpinBox>(panel, "behaviourDistance")->setValue(-0.5);
+  child<QDoubleSpinBox>(panel, "behaviourAngle")->setValue(-45.0);
+  child<QToolButton>(panel, "behaviourMove")->click();
+  child<QToolButton>(panel, "behaviourTurn")->click();
+  ASSERT_EQ(move.count(), 1);
+  ASSERT_EQ(turn.count(), 1);
+  EXPECT_DOUBLE_EQ(move.at(0).at(0).toDouble(), -0.5);
+  EXPECT_NEAR(turn.at(0).at(0).toDouble(), degToRad(-45.0), 1e-12);
+  panel.setBehavioursVisible(false);
+  EXPECT_FALSE(panel.behavioursVisible());
+}
+
 }  // namespace
 }  // namespace irgs::widgets

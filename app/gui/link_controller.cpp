@@ -1,0 +1,143 @@
+#include "app/gui/link_controller.hpp"
+
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+
+#include "app/gui/link_format.hpp"
+#include "comms/link/link_url.hpp"
+#include "comms/robot/arcos_robot.hpp"
+#include "comms/transport/io_thread.hpp"
+#include "comms/transport/port_discovery.hpp"
+
+namespace irgs::gui {
+
+LinkController::LinkController(SessionController& session, QObject* parent)
+    : QObject(parent), session_(session) {
+  poll_timer_.setInterval(kPollInterval_ms);
+  connect(&poll_timer_, &QTimer::timeout, this, &LinkController::poll);
+  poll_timer_.start();
+}
+
+LinkController::~LinkController() = default;
+
+LinkedRobotHandle* LinkController::handle() const {
+  return dynamic_cast<LinkedRobotHandle*>(session_.robot());
+}
+
+QString LinkController::url() const {
+  const LinkedRobotHandle* linked = handle();
+  return linked != nullptr ? QString::fromStdString(linked->url()) : QString();
+}
+
+QString LinkController::connectTo(const QString& url) {
+  const comms::LinkUrlResult parsed = comms::parseLinkUrl(url.trimmed().toStdString());
+  if (!parsed.url)
+    return QString::fromStdString(parsed.error);
+  if (!io_)
+    io_ = std::make_shared<comms::IoThread>();
+  if (!linked())
+    simulator_factory_ = session_.robotFactory();
+  const std::string text = parsed.url->toString();
+  RobotFactory factory = [io = io_, link_url = *parsed.url, text](
+                             const WorldMap&,
+                             const RobotProfile& profile) -> std::unique_ptr<Robot> {
+    if (comms::isArcosUrl(link_url)) {
+      // A Pioneer over ARCOS (docs/pioneer.md): a plain Robot that keeps the io thread alive;
+      // the MAVLink link panel does not apply to it.
+      comms::ArcosRobot::OpenResult arcos = comms::ArcosRobot::open(io, link_url, profile);
+      if (!arcos.robot)
+        throw std::runtime_error(arcos.error);
+      return std::unique_ptr<Robot>(std::move(arcos.robot));
+    }
+    comms::LinkedRobot::OpenResult opened = comms::LinkedRobot::open(*io, link_url, profile);
+    if (!opened.robot)
+      throw std::runtime_error(opened.error);
+    return std::make_unique<LinkedRobotHandle>(io, std::move(opened.robot), text);
+  };
+  try {
+    session_.setRobotFactory(std::move(factory));
+  } catch (const std::exception& e) {
+    return QString::fromUtf8(e.what());
+  }
+  session_.resetGrid();  // the simulator's map of the room is not the robot's
+  session_.report(EventLevel::kInfo,
+                  tr("Connecting to the robot at %1").arg(QString::fromStdString(text)));
+  poll();
+  return {};
+}
+
+void LinkController::disconnectLink() {
+  if (!linked())
+    return;
+  session_.stopRobot();
+  if (simulator_factory_) {
+    session_.setRobotFactory(simulator_factory_);
+    session_.resetGrid();
+    session_.report(EventLevel::kInfo, tr("Link closed; back to the simulator"));
+  }
+  poll();
+}
+
+widgets::LinkHealth LinkController::health() const {
+  LinkedRobotHandle* linked = handle();
+  if (linked == nullptr)
+    return {};
+  return toLinkHealth(linked->linked().linkStats(), QString::fromStdString(linked->url()));
+}
+
+TelemetryRates LinkController::rates() const {
+  const LinkedRobotHandle* linked = handle();
+  return linked != nullptr ? linked->rates() : TelemetryRates{};
+}
+
+void LinkController::poll() {
+  LinkedRobotHandle* linked = handle();
+  if ((linked != nullptr) != was_linked_) {
+    was_linked_ = linked != nullptr;
+    emit linkedChanged(was_linked_);
+  }
+  if (linked == nullptr)
+    return;
+  for (const comms::LinkEvent& event : linked->linked().takeEvents())
+    session_.report(levelOfSeverity(event.severity), formatLinkEvent(event));
+  emit healthChanged(health());
+}
+
+bool LinkController::sendBehaviour(const comms::RobotBehaviourCommand& command,
+                                   const QString& what) {
+  LinkedRobotHandle* linked = handle();
+  if (linked == nullptr)
+    return false;
+  // The result (accepted, rejected, timed out) arrives as a command-result link event.
+  linked->linked().sendBehaviour(command);
+  session_.report(EventLevel::kInfo, tr("Behaviour: %1").arg(what));
+  return true;
+}
+
+bool LinkController::moveDistance(double distance_m) {
+  if (!std::isfinite(distance_m))
+    return false;
+  comms::RobotBehaviourCommand command;
+  command.kind = comms::RobotBehaviourKind::kMoveDistance;
+  command.distance_m = distance_m;
+  return sendBehaviour(command, tr("move %1 m").arg(distance_m, 0, 'f', 2));
+}
+
+bool LinkController::turnAngle(double angle_rad) {
+  if (!std::isfinite(angle_rad))
+    return false;
+  comms::RobotBehaviourCommand command;
+  command.kind = comms::RobotBehaviourKind::kTurnAngle;
+  command.angle_rad = angle_rad;
+  return sendBehaviour(command, tr("turn %1°").arg(radToDeg(angle_rad), 0, 'f', 0));
+}
+
+std::vector<widgets::LinkPortEntry> LinkController::ports() {
+  std::vector<widgets::LinkPortEntry> entries;
+  for (const comms::SerialPortInfo& port : comms::discoverSerialPorts())
+    entries.push_back(toPortEntry(port));
+  return entries;
+}
+
+}  // namespace irgs::gui

@@ -1,0 +1,123 @@
+#include "app/gui/link_ui.hpp"
+
+#include <QLabel>
+#include <QSettings>
+#include <QStatusBar>
+
+#include "app/gui/link_controller.hpp"
+#include "app/gui/link_format.hpp"
+#include "app/gui/session_controller.hpp"
+#include "widgets/command/command_panel.hpp"
+#include "widgets/link/link_health_panel.hpp"
+
+namespace irgs::gui {
+namespace {
+
+std::optional<QString> runConnectionDialog(QWidget& parent,
+                                           widgets::ConnectionDialogOptions options) {
+  widgets::ConnectionDialog dialog(std::move(options), &parent);
+  if (dialog.exec() != QDialog::Accepted)
+    return std::nullopt;
+  return dialog.url();
+}
+
+}  // namespace
+
+LinkUi::LinkUi(SessionController& session, QSettings& settings, widgets::CommandPanel& panel,
+               QStatusBar& status_bar, QWidget& dialog_parent)
+    : QObject(&dialog_parent),
+      session_(session),
+      settings_(settings),
+      panel_(panel),
+      dialog_parent_(dialog_parent) {
+  controller_ = new LinkController(session_, this);
+  health_panel_ = new widgets::LinkHealthPanel(&dialog_parent_);
+  health_panel_->hide();
+  status_label_ = new QLabel(&status_bar);
+  status_label_->setObjectName(QStringLiteral("linkStatus"));
+  status_label_->setToolTip(tr("State of the robot link"));
+  status_label_->hide();
+  status_bar.addPermanentWidget(status_label_);
+  dialog_runner_ = [this](widgets::ConnectionDialogOptions options) {
+    return runConnectionDialog(dialog_parent_, std::move(options));
+  };
+
+  panel_.setLinkedModeAvailable(true, {});
+  connect(&panel_, &widgets::CommandPanel::modeRequested, this,
+          [this](widgets::RobotMode mode) { onModeRequested(static_cast<int>(mode)); });
+  connect(&panel_, &widgets::CommandPanel::moveDistanceRequested, controller_,
+          &LinkController::moveDistance);
+  connect(&panel_, &widgets::CommandPanel::turnAngleRequested, controller_,
+          &LinkController::turnAngle);
+  connect(health_panel_, &widgets::LinkHealthPanel::connectRequested, this,
+          &LinkUi::chooseAndConnect);
+  connect(health_panel_, &widgets::LinkHealthPanel::disconnectRequested, this,
+          &LinkUi::backToSimulator);
+  connect(controller_, &LinkController::linkedChanged, this, &LinkUi::onLinkedChanged);
+  connect(controller_, &LinkController::healthChanged, this, &LinkUi::onHealthChanged);
+}
+
+LinkUi::~LinkUi() = default;
+
+void LinkUi::setDialogRunner(DialogRunner runner) {
+  if (runner)
+    dialog_runner_ = std::move(runner);
+}
+
+QString LinkUi::connectTo(const QString& url) {
+  const QString problem = controller_->connectTo(url);
+  if (!problem.isEmpty()) {
+    session_.report(EventLevel::kError, tr("Cannot connect to %1: %2").arg(url, problem));
+  } else {
+    settings_.setValue(QString::fromLatin1(kLastLinkUrlKey), url.trimmed());
+  }
+  onLinkedChanged(controller_->linked());
+  return problem;
+}
+
+bool LinkUi::chooseAndConnect() {
+  widgets::ConnectionDialogOptions options;
+  options.ports = LinkController::ports();
+  options.rescan = &LinkController::ports;
+  options.initial_url = controller_->linked()
+                            ? controller_->url()
+                            : settings_.value(QString::fromLatin1(kLastLinkUrlKey)).toString();
+  options.validate = &validateLinkUrl;
+  const std::optional<QString> url = dialog_runner_(std::move(options));
+  if (!url) {
+    onLinkedChanged(controller_->linked());  // the mode switch shows what is really in use
+    return false;
+  }
+  return connectTo(*url).isEmpty();
+}
+
+void LinkUi::backToSimulator() {
+  controller_->disconnectLink();
+  onLinkedChanged(controller_->linked());
+}
+
+void LinkUi::onModeRequested(int mode) {
+  if (static_cast<widgets::RobotMode>(mode) == widgets::RobotMode::kLinkedRobot)
+    chooseAndConnect();
+  else
+    backToSimulator();
+}
+
+void LinkUi::onLinkedChanged(bool linked) {
+  panel_.setMode(linked ? widgets::RobotMode::kLinkedRobot : widgets::RobotMode::kSimulator);
+  panel_.setBehavioursVisible(linked);
+  health_panel_->setVisible(linked);
+  status_label_->setVisible(linked);
+  if (linked)
+    onHealthChanged(controller_->health());
+}
+
+void LinkUi::onHealthChanged(const widgets::LinkHealth& health) {
+  health_panel_->setHealth(health);
+  status_label_->setText(tr("link %1").arg(widgets::LinkHealthPanel::stateText(health.state)));
+  status_label_->setStyleSheet(
+      QStringLiteral("QLabel { color: %1; font-weight: bold; padding: 0 6px; }")
+          .arg(widgets::LinkHealthPanel::stateColour(health.state)));
+}
+
+}  // namespace irgs::gui
