@@ -1,7 +1,6 @@
 #include "core/mapping/occupancy_grid.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -9,21 +8,27 @@
 #include <stdexcept>
 #include <utility>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "core/mapping/sonar_cone.hpp"
 
 // Storage (see docs/decisions/grid.md): 64x64-cell tiles of float log-odds, allocated on the
 // first write to any of their cells and found through a hash map on packed tile coordinates.
 // NaN marks a never-observed cell, so "observed" costs no extra memory and the update loop
 // learns it from the value it loads anyway. A cone update first scans the cone into rows (each
-// row: its cells and, within them, the free run; sonar_cone.cpp) and then runs a branch-free,
-// vectorised loop over each row piece within a tile; tiles are looked up once per cone through a
-// small table over the cone's tiles. The row and tile buffers are kept between calls, so a warm
-// update allocates nothing.
+// row: its cells and, within them, the free run; sonar_cone.cpp), prefetching each row's cells as
+// the row is found, and then updates each run of equal increments with SSE2 (RunUpdater); tiles
+// are looked up once per cone through a small table over the cone's tiles. The row and tile
+// buffers are kept between calls, so a warm update allocates nothing.
 
 #if defined(__GNUC__)
 #define IRGS_ALWAYS_INLINE __attribute__((always_inline))
+#define IRGS_PREFETCH_WRITE(p) __builtin_prefetch((p), 1, 3)
 #else
 #define IRGS_ALWAYS_INLINE
+#define IRGS_PREFETCH_WRITE(p) static_cast<void>(p)
 #endif
 
 namespace irgs {
@@ -38,67 +43,103 @@ inline float updatedCell(float v, bool unknown, float delta, float lo, float hi)
   return std::min(std::max((unknown ? 0.0f : v) + delta, lo), hi);
 }
 
-// Cells are updated in aligned groups of kLanes: a row piece [a, b] is widened to whole groups
-// and the cells outside it are written back unchanged, so the loop has no remainder whose
-// varying length would cost a branch misprediction per run (short cones have many short runs).
-// A tile row (kTileSize cells) is a whole number of groups, so groups never leave the tile.
-constexpr int kLanes = 4;
-static_assert(OccupancyGrid::kTileSize % kLanes == 0);
+// Cone cells are updated by runs: a run is cells [a, b] of one tile row that all get the same
+// increment (a row of a cone is at most three runs per tile: occupied, free, occupied). With SSE2
+// (every x86-64) a run is whole aligned groups of four cells, the first and last blended with a
+// lane mask so that cells outside [a, b] are written back unchanged; elsewhere a plain loop. Both
+// compute exactly updatedCell() for each cell (the SSE2 operand order reproduces std::max and
+// std::min bit for bit, signed zeros included). The count of cells that were unobserved is
+// accumulated per lane and read once per cone.
+#if defined(__SSE2__)
+class RunUpdater {
+ public:
+  RunUpdater(float free_delta, float occupied_delta, float lo, float hi)
+      : free_(_mm_set1_ps(free_delta)),
+        occupied_(_mm_set1_ps(occupied_delta)),
+        lo_(_mm_set1_ps(lo)),
+        hi_(_mm_set1_ps(hi)) {}
 
-// Updates the cells of groups [begin, end) that lie in [a, b] (the others are written back
-// unchanged): those in [fa, fb] (may be empty or reach outside [a, b]) by free_delta, the others
-// by occupied_delta. Returns how many updated cells were unobserved. Branch free, so that the
-// compiler vectorises it.
-inline std::uint32_t updateMasked(float* cells, int begin, int end, int a, int b, int fa, int fb,
-                                  float free_delta, float occupied_delta, float lo, float hi) {
-  std::uint32_t fresh = 0;
-  for (int i = begin; i < end; ++i) {
-    const float v = cells[i];
-    const bool unknown = std::isnan(v);
-    const auto active = static_cast<std::uint32_t>((i >= a) & (i <= b));
-    const float delta = ((i >= fa) & (i <= fb)) ? free_delta : occupied_delta;
-    // Written as a bit blend: as `active ? updated : v` the compiler turns the write into a
-    // branch and the loop stays scalar.
-    const std::uint32_t keep_new = 0u - active;
-    const std::uint32_t bits =
-        (std::bit_cast<std::uint32_t>(updatedCell(v, unknown, delta, lo, hi)) & keep_new) |
-        (std::bit_cast<std::uint32_t>(v) & ~keep_new);
-    cells[i] = std::bit_cast<float>(bits);
-    fresh += active & static_cast<std::uint32_t>(unknown);
+  // Cells [a, b] of the tile row starting at `row` (0 <= a <= b < kTileSize). Groups start at
+  // multiples of four cells of the row, so they never leave it.
+  IRGS_ALWAYS_INLINE void run(float* row, int a, int b, bool free) {
+    const __m128 delta = free ? free_ : occupied_;
+    const int g0 = a & ~3;
+    const int g1 = b & ~3;
+    const __m128 head = headMask(a & 3);
+    const __m128 tail = tailMask(b & 3);
+    if (g0 == g1) {
+      masked(row + g0, delta, _mm_and_ps(head, tail));
+      return;
+    }
+    masked(row + g0, delta, head);
+    for (int g = g0 + 4; g < g1; g += 4)
+      full(row + g, delta);
+    masked(row + g1, delta, tail);
   }
-  return fresh;
-}
 
-// updateMasked for cells that are all in [a, b]: half the work per cell.
-inline std::uint32_t updateAll(float* cells, int begin, int end, int fa, int fb, float free_delta,
-                               float occupied_delta, float lo, float hi) {
-  std::uint32_t fresh = 0;
-  for (int i = begin; i < end; ++i) {
-    const float v = cells[i];
-    const bool unknown = std::isnan(v);
-    const float delta = ((i >= fa) & (i <= fb)) ? free_delta : occupied_delta;
-    cells[i] = updatedCell(v, unknown, delta, lo, hi);
-    fresh += static_cast<std::uint32_t>(unknown);
+  // Cells that were unobserved, over all runs so far. Each lane counts at most one cell in four
+  // of a cone (< 2^31 for any accepted cone), so the 32-bit lanes cannot overflow.
+  std::uint64_t fresh() const {
+    alignas(16) std::uint32_t lanes[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(lanes), fresh_);
+    return std::uint64_t{lanes[0]} + lanes[1] + lanes[2] + lanes[3];
   }
-  return fresh;
-}
 
-// Updates cells [a, b] of one tile row (0 <= a <= b < kTileSize), the free ones [fa, fb] by
-// free_delta, the others by occupied_delta; returns how many were unobserved. Short pieces are one
-// masked pass; long ones a masked group at each end and an unmasked middle.
-IRGS_ALWAYS_INLINE inline std::uint32_t updateTileRow(float* cells, int a, int b, int fa, int fb,
-                                                      float free_delta, float occupied_delta,
-                                                      float lo, float hi) {
-  const int begin = a & ~(kLanes - 1);
-  const int end = (b | (kLanes - 1)) + 1;
-  if (end - begin <= 4 * kLanes)
-    return updateMasked(cells, begin, end, a, b, fa, fb, free_delta, occupied_delta, lo, hi);
-  return updateMasked(cells, begin, begin + kLanes, a, b, fa, fb, free_delta, occupied_delta, lo,
-                      hi) +
-         updateAll(cells, begin + kLanes, end - kLanes, fa, fb, free_delta, occupied_delta, lo,
-                   hi) +
-         updateMasked(cells, end - kLanes, end, a, b, fa, fb, free_delta, occupied_delta, lo, hi);
-}
+ private:
+  // updatedCell() on four lanes: (unknown ? 0 : v) + delta, then std::max(s, lo) = (s < lo) ?
+  // lo : s = maxps(lo, s) and std::min(m, hi) = (hi < m) ? hi : m = minps(hi, m).
+  IRGS_ALWAYS_INLINE __m128 updated(__m128 v, __m128 unknown, __m128 delta) const {
+    const __m128 sum = _mm_add_ps(_mm_andnot_ps(unknown, v), delta);
+    return _mm_min_ps(hi_, _mm_max_ps(lo_, sum));
+  }
+  IRGS_ALWAYS_INLINE void full(float* p, __m128 delta) {
+    const __m128 v = _mm_loadu_ps(p);
+    const __m128 unknown = _mm_cmpunord_ps(v, v);
+    _mm_storeu_ps(p, updated(v, unknown, delta));
+    fresh_ = _mm_sub_epi32(fresh_, _mm_castps_si128(unknown));  // a true lane is -1
+  }
+  IRGS_ALWAYS_INLINE void masked(float* p, __m128 delta, __m128 mask) {
+    const __m128 v = _mm_loadu_ps(p);
+    const __m128 unknown = _mm_cmpunord_ps(v, v);
+    const __m128 n = updated(v, unknown, delta);
+    _mm_storeu_ps(p, _mm_or_ps(_mm_and_ps(mask, n), _mm_andnot_ps(mask, v)));
+    fresh_ = _mm_sub_epi32(fresh_, _mm_castps_si128(_mm_and_ps(mask, unknown)));
+  }
+  // Lanes >= k, lanes <= k.
+  static __m128 headMask(int k) {
+    alignas(16) static constexpr std::int32_t kHead[4][4] = {
+        {-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}};
+    return _mm_load_ps(reinterpret_cast<const float*>(kHead[k]));
+  }
+  static __m128 tailMask(int k) {
+    alignas(16) static constexpr std::int32_t kTail[4][4] = {
+        {-1, 0, 0, 0}, {-1, -1, 0, 0}, {-1, -1, -1, 0}, {-1, -1, -1, -1}};
+    return _mm_load_ps(reinterpret_cast<const float*>(kTail[k]));
+  }
+
+  __m128 free_, occupied_, lo_, hi_;
+  __m128i fresh_ = _mm_setzero_si128();
+};
+#else
+class RunUpdater {
+ public:
+  RunUpdater(float free_delta, float occupied_delta, float lo, float hi)
+      : free_(free_delta), occupied_(occupied_delta), lo_(lo), hi_(hi) {}
+  void run(float* row, int a, int b, bool free) {
+    const float delta = free ? free_ : occupied_;
+    for (int i = a; i <= b; ++i) {
+      const bool unknown = std::isnan(row[i]);
+      row[i] = updatedCell(row[i], unknown, delta, lo_, hi_);
+      fresh_ += unknown ? 1u : 0u;
+    }
+  }
+  std::uint64_t fresh() const { return fresh_; }
+
+ private:
+  float free_, occupied_, lo_, hi_;
+  std::uint64_t fresh_ = 0;
+};
+#endif
 
 std::string describe(const Vec2& p) {
   std::ostringstream out;
@@ -254,24 +295,57 @@ void OccupancyGrid::noteTouched(const CellRect& cells) {
   dirty_rect_.extend(cells);
 }
 
-struct OccupancyGrid::ConeDeltas {
-  float free_delta, occupied_delta, lo, hi;
+struct OccupancyGrid::ConeUpdater : RunUpdater {
+  using RunUpdater::RunUpdater;
 };
 
-IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, const ConeDeltas& d) {
+IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, ConeUpdater& u) {
   const int ty = r.row >> kTileShift;
   const int row_offset = (r.row & kTileMask) * kTileSize;
   for (int col = r.col0; col <= r.col1;) {
     const int tx = col >> kTileShift;
     const int base = tx * kTileSize;
     const int run_end = std::min(r.col1, base + kTileMask);
-    observed_cells_ +=
-        updateTileRow(cachedTile(tx, ty) + row_offset, col - base, run_end - base, r.free0 - base,
-                      r.free1 - base, d.free_delta, d.occupied_delta, d.lo, d.hi);
+    float* cells = cachedTile(tx, ty) + row_offset;
+    // The free run of this piece; empty (f0 > f1) when the row has none or it lies elsewhere.
+    const int f0 = std::max(col, r.free0);
+    const int f1 = std::min(run_end, r.free1);
+    if (f0 > f1) {
+      u.run(cells, col - base, run_end - base, false);
+    } else {
+      if (col < f0)
+        u.run(cells, col - base, f0 - 1 - base, false);
+      u.run(cells, f0 - base, f1 - base, true);
+      if (f1 < run_end)
+        u.run(cells, f1 + 1 - base, run_end - base, false);
+    }
     col = run_end + 1;
   }
   cell_updates_ += static_cast<std::uint64_t>(r.col1 - r.col0 + 1);
 }
+
+IRGS_ALWAYS_INLINE inline void OccupancyGrid::prefetchConeRow(const ConeRow& r) {
+  const int ty = r.row >> kTileShift;
+  const int row_offset = (r.row & kTileMask) * kTileSize;
+  for (int col = r.col0; col <= r.col1;) {
+    const int tx = col >> kTileShift;
+    const int base = tx * kTileSize;
+    const int run_end = std::min(r.col1, base + kTileMask);
+    const float* first = cachedTile(tx, ty) + row_offset + (col - base);
+    const float* last = first + (run_end - col);
+    // The first and last 64-byte lines of [first, last]: the hardware prefetcher follows the
+    // stream between them once it has started (prefetching every line cost more than it saved).
+    IRGS_PREFETCH_WRITE(first);
+    IRGS_PREFETCH_WRITE(last);
+    col = run_end + 1;
+  }
+}
+
+struct OccupancyGrid::RowPrefetcher final : ConeRowObserver {
+  explicit RowPrefetcher(OccupancyGrid& g) : grid(g) {}
+  void rowFound(const ConeRow& row) override { grid.prefetchConeRow(row); }
+  OccupancyGrid& grid;
+};
 
 void OccupancyGrid::applyCell(int col, int row, float delta, float lo, float hi) {
   float* tile = findOrCreateTile(col >> kTileShift, row >> kTileShift);
@@ -318,27 +392,34 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
                                    double range_m, bool echo, const SonarInverseModel& model) {
   const SonarCone cone =
       checkedCone(*this, origin, heading_rad, beam_width_rad, range_m, echo, model);
-  scanConeRows(cone, resolution_m_, scratch_rows_);
+  // The cells of a cone are scattered over a cache line or two per row, and the grid (4 bytes a
+  // cell) is larger than L2: each row is a cache miss the hardware prefetcher cannot foresee, so
+  // the update was bound by memory latency. Each row's lines are requested as soon as the scan
+  // finds the row, so that the fetches overlap the rest of the scan and one another. The tile
+  // table therefore covers the cone's bounding box (a superset of the cells it touches).
+  const CellRect bounds = coneCellBounds(cone, resolution_m_);
+  cache_tx0_ = bounds.col0 >> kTileShift;
+  cache_ty0_ = bounds.row0 >> kTileShift;
+  cache_width_ = (bounds.col1 >> kTileShift) - cache_tx0_ + 1;
+  const int cache_height = (bounds.row1 >> kTileShift) - cache_ty0_ + 1;
+  tile_cache_.assign(
+      static_cast<std::size_t>(cache_width_) * static_cast<std::size_t>(cache_height), nullptr);
+  RowPrefetcher prefetcher(*this);
+  scanConeRows(cone, resolution_m_, scratch_rows_, &prefetcher);
   if (scratch_rows_.empty())
     return;
   // Rows come ascending.
   CellRect touched{std::numeric_limits<int>::max(), scratch_rows_.front().row,
                    std::numeric_limits<int>::min(), scratch_rows_.back().row};
+  ConeUpdater updater(static_cast<float>(model.free_log_odds),
+                      static_cast<float>(model.occupied_log_odds),
+                      static_cast<float>(model.clamp_min), static_cast<float>(model.clamp_max));
   for (const ConeRow& r : scratch_rows_) {
     touched.col0 = std::min(touched.col0, r.col0);
     touched.col1 = std::max(touched.col1, r.col1);
+    applyConeRow(r, updater);
   }
-  cache_tx0_ = touched.col0 >> kTileShift;
-  cache_ty0_ = touched.row0 >> kTileShift;
-  cache_width_ = (touched.col1 >> kTileShift) - cache_tx0_ + 1;
-  const int cache_height = (touched.row1 >> kTileShift) - cache_ty0_ + 1;
-  tile_cache_.assign(
-      static_cast<std::size_t>(cache_width_) * static_cast<std::size_t>(cache_height), nullptr);
-  const ConeDeltas deltas{static_cast<float>(model.free_log_odds),
-                          static_cast<float>(model.occupied_log_odds),
-                          static_cast<float>(model.clamp_min), static_cast<float>(model.clamp_max)};
-  for (const ConeRow& r : scratch_rows_)
-    applyConeRow(r, deltas);
+  observed_cells_ += updater.fresh();
   noteTouched(touched);
 }
 

@@ -167,8 +167,12 @@ class OccupancyGrid {
   // Applies one rasterised cone row (free and occupied increments, clamped to [lo, hi]). The
   // tile of each run of cells comes from tile_cache_, a table over the cone's tiles filled on
   // first use, so that no run costs a hash lookup.
-  struct ConeDeltas;
-  void applyConeRow(const ConeRow& row, const ConeDeltas& deltas);
+  struct ConeUpdater;
+  void applyConeRow(const ConeRow& row, ConeUpdater& updater);
+  // Requests the cache lines of a cone row ahead of its update; RowPrefetcher calls it for each
+  // row while the cone is being scanned.
+  void prefetchConeRow(const ConeRow& row);
+  struct RowPrefetcher;
   float* cachedTile(int tx, int ty);
   void applyCell(int col, int row, float delta, float lo, float hi);
   void noteTouched(const CellRect& cells);

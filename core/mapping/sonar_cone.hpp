@@ -6,8 +6,10 @@
 // rasteriser finds, per row, the exact column interval of each condition of the criterion:
 // every condition is monotone along a row even in floating point (rounding is monotone), so an
 // analytic estimate of each boundary (ray/row intersection, circle/row intersection: one sqrt
-// per row) is corrected by evaluating the criterion on the one or two cells around it. The
-// result is therefore bit-for-bit the set of cells for which classify() says so.
+// per row) is taken as is when it lies further from every cell centre than a bound on the
+// rounding errors of the estimate and of the criterion (the usual case), and is otherwise
+// corrected by evaluating the criterion on the one or two cells around it. The result is
+// therefore bit-for-bit the set of cells for which classify() says so.
 
 #include <cstdint>
 #include <vector>
@@ -80,10 +82,22 @@ struct ConeRow {
 
 // Replaces `rows` with the cone's non-empty rows, ascending. Exactly the cells classify() puts in
 // the cone (bit for bit). Cost per row: O(1) floating-point work (one square root per disc; each
-// boundary is estimated analytically and confirmed with two evaluations of the criterion, walked
-// from only when rounding puts it elsewhere) and nothing per cell. Reusing `rows` across calls
-// keeps this free of heap allocations.
+// boundary is estimated analytically and used directly when clear of cell centres by more than
+// its error bound, else confirmed with two evaluations of the criterion and walked from only when
+// rounding puts it elsewhere) and nothing per cell. Reusing `rows` across calls keeps this free
+// of heap allocations.
 void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows);
+
+// Told of each row as scanConeRows finds it, before the next one is scanned: OccupancyGrid starts
+// fetching a row's cells from memory there, so that the fetch overlaps the rest of the scan.
+class ConeRowObserver {
+ public:
+  virtual ~ConeRowObserver() = default;
+  virtual void rowFound(const ConeRow& row) = 0;
+};
+// scanConeRows, calling observer->rowFound for each row as it is appended (observer may be null).
+void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows,
+                  ConeRowObserver* observer);
 
 // Replaces `spans` with the cone's cells as row spans: rows ascending, within a row columns
 // ascending, spans disjoint, never kOutside. Cost: O(rows) boundary work + no per-cell work.

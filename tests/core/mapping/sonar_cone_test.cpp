@@ -127,6 +127,50 @@ TEST(SonarCone, RowsMatchPerCellCriterionOnRandomCones) {
   }
 }
 
+TEST(SonarCone, RowsMatchPerCellCriterionWhenBoundariesPassThroughCellCentres) {
+  // Apex on a cell centre, edges along the grid's diagonals and axes, radii whole numbers of
+  // cells: every boundary estimate falls on (or within rounding of) a cell centre, where the
+  // scan must not trust the estimate but evaluate the criterion. Near and far from the origin.
+  std::vector<ConeRow> rows;
+  const double res = 0.01;
+  for (const double far : {0.0, 1234.5, -98765.4}) {
+    for (int h = 0; h < 16; ++h) {
+      for (const int radius_cells : {7, 20, 53}) {
+        const Vec2 apex(cellCentreCoordinate(17, res) + far, cellCentreCoordinate(-4, res) - far);
+        SonarInverseModel model;
+        model.arc_thickness_m = 4.0 * res;
+        const SonarCone cone =
+            makeSonarCone(apex, h * kPi / 8.0, kPi / 2.0, radius_cells * res, h % 2 == 0, model);
+        scanConeRows(cone, res, rows);
+        ASSERT_EQ(fromRows(rows), perCell(cone, res))
+            << "far " << far << " heading " << h << " radius " << radius_cells;
+      }
+    }
+  }
+}
+
+TEST(SonarCone, RowObserverSeesEveryRowInOrderAsItIsFound) {
+  struct Recorder final : ConeRowObserver {
+    std::vector<ConeRow>* live = nullptr;
+    std::vector<ConeRow> seen;
+    void rowFound(const ConeRow& row) override {
+      // Told as soon as the row is appended, before the next one.
+      EXPECT_EQ(live->back(), row);
+      seen.push_back(row);
+    }
+  };
+  std::vector<ConeRow> rows;
+  Recorder recorder;
+  recorder.live = &rows;
+  const SonarCone cone = makeSonarCone({0.3, -0.2}, 1.0, degToRad(30.0), 1.2, true, {});
+  scanConeRows(cone, 0.01, rows, &recorder);
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(recorder.seen, rows);
+  std::vector<ConeRow> without_observer;
+  scanConeRows(cone, 0.01, without_observer);
+  EXPECT_EQ(without_observer, rows);
+}
+
 TEST(SonarCone, SpansMatchPerCellCriterionWhenAnEdgeIsNearlyAxisAligned) {
   // An edge within a hair of horizontal crosses a row at a column far from any estimate's
   // reach (its slope in columns per row is huge or infinite): the scan must fall back to
