@@ -14,6 +14,25 @@ namespace irgs {
 namespace {
 
 constexpr double kApproachLimit_m = 0.8;  // drive at most this far toward a suspected obstacle
+constexpr double kApproachSpeed_mps = 0.15;
+constexpr double kExploreFree = 0.3;  // long-range knowledge grid: free below this probability
+// Wall landmarks (position revision): a later fit must overlap one by this much along the wall,
+// and on the same loop be this far of travel later, to move the pose.
+constexpr double kLandmarkOverlap_m = 0.3;
+constexpr double kLandmarkMinAge_m = 10.0;
+// Ranging to room walls: nearer readings are wall following's; the wall's normal must be this
+// far inside the cone; the built map must be free up to this short of the wall.
+constexpr double kRangingMin_m = 0.4;
+constexpr double kRangingConeMargin_rad = 0.05;
+constexpr double kRangingClearance_m = 0.35;
+// Around the point where an obstacle loop started, no new obstacle target after the loop closed.
+constexpr double kAnchorBlacklist_m = 0.5;
+constexpr double kMissedAnchorBlacklist_m = 1.2;
+constexpr double kPocketMaxArea_m2 = 1.0;  // clockwise obstacle loops smaller than this: pockets //
+                                           // when the loop did not enclose it
+// At most this many obstacle loops may start within kRevisitRadius_m of one another.
+constexpr double kRevisitRadius_m = 1.0;
+constexpr int kMaxLoopsNearSpot = 2;
 // Learned odometry heading error: bounds (0.57 deg/m; 2 % of the angle turned) and the
 // regularisation of the least-squares fit (in m^2 and rad^2: a weak pull towards zero).
 constexpr double kMaxDrift_radpm = 0.01;
@@ -83,6 +102,17 @@ std::optional<std::string> mapBuildingConfigError(const MapBuildingConfig& c) {
       !std::isfinite(c.heading_gate_per_turn) || c.heading_gate_per_turn < 0.0 ||
       !std::isfinite(c.heading_confirm_rad) || c.heading_confirm_rad < 0.0)
     return "heading gate and confirmation tolerances must be finite and >= 0";
+  if (!std::isfinite(c.heading_walk_rad2_per_m) || c.heading_walk_rad2_per_m < 0.0 ||
+      !std::isfinite(c.heading_walk_rad2_per_rad) || c.heading_walk_rad2_per_rad < 0.0 ||
+      !positive(c.heading_fit_floor_rad) || !positive(c.obstacle_fit_floor_rad))
+    return "heading random walk must be finite and >= 0, fit floors > 0";
+  if (!positive(c.wall_ranging_gate_m) || !std::isfinite(c.wall_ranging_gain) ||
+      c.wall_ranging_gain <= 0.0 || c.wall_ranging_gain > 1.0)
+    return "wall_ranging_gate_m must be > 0 and wall_ranging_gain in (0, 1]";
+  if (!positive(c.max_obstacle_loop_m) || c.max_obstacle_loop_m <= c.min_loop_length_m)
+    return "max_obstacle_loop_m must be > min_loop_length_m";
+  if (!std::isfinite(c.explore_range_m) || c.explore_range_m < 0.0)
+    return "explore_range_m must be finite and >= 0";
   if (!positive(c.position_gate_m))
     return "position_gate_m must be > 0";
   if (const auto err = sonarInverseModelError(c.sonar_model))
@@ -118,6 +148,13 @@ MapBuildingConfig normalised(MapBuildingConfig c) {
   c.follow.turn_quantum_rad = c.turn_quantum_rad;
   return c;
 }
+// The long-range knowledge grid: echoes clear the cone up to the explore range, no echo clears
+// as far.
+SonarInverseModel exploreModel(const MapBuildingConfig& c) {
+  SonarInverseModel m = c.sonar_model;
+  m.no_echo_free_range_m = std::max(m.no_echo_free_range_m, c.explore_range_m);
+  return m;
+}
 MapBuildingConfig checked(const MapBuildingConfig& c) {
   if (const auto err = mapBuildingConfigError(c))
     throw std::invalid_argument("MapBuildingConfig: " + *err);
@@ -132,6 +169,9 @@ MapBuildingBehaviour::MapBuildingBehaviour(const RobotProfile& profile, MapBuild
       follower_(profile, config_.follow),
       mapper_(profile, config_.sonar_model, config_.map_valid_distance_m),
       grid_(config_.grid_resolution_m),
+      explore_mapper_(profile, exploreModel(config_),
+                      config_.explore_range_m > 0.0 ? config_.explore_range_m : 1.0),
+      explore_grid_(0.5 * config_.explore_cell_m),
       body_radius_m_(profile.bodyRadius()) {}
 
 VelocityCommand MapBuildingBehaviour::fail(const std::string& why) {
@@ -144,7 +184,7 @@ BehaviourStatus MapBuildingBehaviour::status() const {
   BehaviourStatus s;
   s.phase = std::string(toString(phase_));
   if (phase_ == MapBuildingPhase::kObstacle)
-    s.phase += " " + std::to_string(obstacle_loops_.size() + 1);
+    s.phase.append(1, ' ').append(std::to_string(obstacle_loops_.size() + 1));
   s.finished = phase_ == MapBuildingPhase::kDone || phase_ == MapBuildingPhase::kFailed;
   s.failed = phase_ == MapBuildingPhase::kFailed;
   s.message = message_;
@@ -159,12 +199,14 @@ BehaviourStatus MapBuildingBehaviour::status() const {
 
 VelocityCommand MapBuildingBehaviour::startFollowing(const Pose2& pose, MapBuildingPhase phase) {
   (void)pose;
+  ++follow_epoch_;
   follower_.restart();
   phase_ = phase;
   indices_.clear();
   index_distance_.clear();
   index_heading_.clear();
   loop_distance_m_ = 0.0;
+  loop_interior_m_ = 0.0;
   move_ = Move::kNone;
   return {};
 }
@@ -202,10 +244,36 @@ VelocityCommand MapBuildingBehaviour::onLoopClosed(const Pose2& pose, std::size_
   loop.signed_area_m2 = signedArea(loop.indices);
   loop.obstacle = loop.signed_area_m2 > 0.0;
   const bool was_outline_search = phase_ == MapBuildingPhase::kFollowWall;
+  const bool was_obstacle = phase_ == MapBuildingPhase::kObstacle;
+  ++follow_epoch_;
   phase_ = MapBuildingPhase::kLoopClosed;
   move_ = Move::kPause;
   pause_until_s_ = now_s_ + 1.0;
-  if (loop.obstacle) {
+  if (was_obstacle && obstacle_anchor_) {
+    // Whatever the loop looked like, the surface that started it has been followed: never
+    // start again from there (a concave pocket of an obstacle closes small clockwise loops).
+    // A loop that did not enclose it went round a neighbour instead (obstacles closer than
+    // the follower's reach): that surface was seen from close by, so leave its whole
+    // neighbourhood to the map rather than trying again from its other faces.
+    // (A clockwise loop went round the room along its walls: the obstacle touches a wall
+    // through a gap too narrow to pass; it is tried again from elsewhere.)
+    const bool missed = loop.obstacle && !insidePolygon(loop.indices, *obstacle_anchor_);
+    blacklist(*obstacle_anchor_, missed ? kMissedAnchorBlacklist_m : kAnchorBlacklist_m);
+    obstacle_anchors_.push_back(*obstacle_anchor_);
+    obstacle_anchor_.reset();
+  }
+  if (was_obstacle && !loop.obstacle && outline_) {
+    // Clockwise inside the room: a small one is a pocket of the obstacle being followed (its
+    // surroundings are explained); a large one went round the room along its walls and explains
+    // nothing new.
+    if (-loop.signed_area_m2 < kPocketMaxArea_m2) {
+      pocket_loops_.push_back(loop);
+      message_ = "obstacle pocket traced (" + std::to_string(loop.indices.size()) + " indices)";
+    } else {
+      message_ = "obstacle loop went round the room";
+    }
+    after_pause_ = MapBuildingPhase::kInterior;
+  } else if (loop.obstacle) {
     obstacle_loops_.push_back(loop);
     if (was_outline_search && !outline_) {
       first_wall_was_obstacle_ = obstacle_loops_.size() == 1 ? true : first_wall_was_obstacle_;
@@ -253,6 +321,33 @@ VelocityCommand MapBuildingBehaviour::followStep(const TelemetrySample& sample, 
     all_indices_.push_back(pose.position());
     next_index_at_m_ += config_.index_spacing_m;
   }
+  // An obstacle loop that goes on and on has merged several obstacles packed closer than the
+  // follower's reach (or keeps missing its start): what it passed is mapped and explained;
+  // give it up and go on with the interior.
+  if (phase_ == MapBuildingPhase::kObstacle && outline_ &&
+      distanceToLoop(outline_->indices, pose.position()) > config_.follow.distance_m + 0.3)
+    loop_interior_m_ += (pose.position() - last_pose_.position()).norm();
+  if (phase_ == MapBuildingPhase::kObstacle && loop_interior_m_ > config_.max_obstacle_loop_m) {
+    TracedLoop partial;
+    partial.indices = indices_;
+    pocket_loops_.push_back(partial);
+    if (obstacle_anchor_) {
+      blacklist(*obstacle_anchor_, kMissedAnchorBlacklist_m);
+      obstacle_anchors_.push_back(*obstacle_anchor_);
+      obstacle_anchor_.reset();
+    }
+    indices_.clear();
+    index_distance_.clear();
+    index_heading_.clear();
+    ++follow_epoch_;
+    message_ = "obstacle loop given up after " +
+               std::to_string(static_cast<int>(config_.max_obstacle_loop_m)) + " m";
+    phase_ = MapBuildingPhase::kLoopClosed;
+    after_pause_ = MapBuildingPhase::kInterior;
+    move_ = Move::kPause;
+    pause_until_s_ = now_s_ + 1.0;
+    return {};
+  }
   // Back at an earlier index, heading the same way, after a real loop: closed.
   if (follower_.following()) {
     for (std::size_t i = 0; i < indices_.size(); ++i) {
@@ -273,7 +368,20 @@ bool MapBuildingBehaviour::explained(const Vec2& p) const {
   for (const TracedLoop& loop : obstacle_loops_)
     if (insidePolygon(loop.indices, p) || distanceToLoop(loop.indices, p) < margin)
       return true;
+  for (const TracedLoop& loop : pocket_loops_)
+    if (distanceToLoop(loop.indices, p) < margin)
+      return true;
   return false;
+}
+
+bool MapBuildingBehaviour::visitedOften(const Vec2& p) const {
+  // Obstacles packed closer than the follower's reach (a post in a narrow aisle between boxes)
+  // merge into loops round several of them, pockets and fragments; after a few loops started
+  // near a spot, what is left there has been seen from close by and is mapped, not circled.
+  int loops = 0;
+  for (const Vec2& a : obstacle_anchors_)
+    loops += (a - p).norm() < kRevisitRadius_m ? 1 : 0;
+  return loops >= kMaxLoopsNearSpot;
 }
 
 void MapBuildingBehaviour::blacklist(const Vec2& p, double radius_m) {
@@ -317,6 +425,17 @@ std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(c
   std::vector<std::uint8_t> state(static_cast<std::size_t>(W * H), kUnknown);
   for (std::size_t k = 0; k < state.size(); ++k)
     state[k] = occupied[k] >= 2 ? kOcc : (observed[k] * 2 >= f * f ? kFree : kUnknown);
+  // Free space seen at long range (explore_range_m) is known too: no need to drive within the
+  // mapping range of every open spot. Obstacles still come from the mapping grid only.
+  if (config_.explore_range_m > 0.0)
+    for (int r = 0; r < H; ++r)
+      for (int c = 0; c < W; ++c) {
+        if (state[at(c, r)] != kUnknown)
+          continue;
+        const Cell e = explore_grid_.cellAt(centre(c, r));
+        if (explore_grid_.observed(e) && explore_grid_.probability(e) < kExploreFree)
+          state[at(c, r)] = kFree;
+      }
   // Blocked for travel: occupied grown by the body radius plus a margin; unknown.
   const double inflate_m = body_radius_m_ + config_.clearance_margin_m;
   const int rad = static_cast<int>(std::ceil(inflate_m / cell));
@@ -345,6 +464,14 @@ std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(c
       if ((p - blacklist_[i]).norm() < blacklist_radius_[i])
         return true;
     return false;
+  };
+  // A robot that ended a loop beside an obstacle stands inside its inflated band: known free
+  // cells that near the robot stay passable, so it can plan its way out instead of finding
+  // nothing to do.
+  const auto passable = [&](int x, int y) {
+    if (!blocked[at(x, y)])
+      return true;
+    return state[at(x, y)] == kFree && std::hypot(x - rc, y - rr) * cell <= inflate_m + cell;
   };
   // Dijkstra (8-connected, costs 10 / 14) from the robot's cell.
   std::vector<int> cost(state.size(), std::numeric_limits<int>::max());
@@ -378,7 +505,7 @@ std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(c
             continue;
           const Vec2 o = centre(x, y);
           if ((o - p).norm() > near_obstacle_m || !insidePolygon(outline_->indices, o) ||
-              explained(o) || listed(o))
+              explained(o) || listed(o) || visitedOften(o))
             continue;
           t.obstacle = true;
           t.obstacle_point = o;
@@ -411,10 +538,10 @@ std::optional<MapBuildingBehaviour::Target> MapBuildingBehaviour::chooseTarget(c
         if (dr == 0 && dc == 0)
           continue;
         const int x = c + dc, y = r + dr;
-        if (x < 0 || y < 0 || x >= W || y >= H || blocked[at(x, y)])
+        if (x < 0 || y < 0 || x >= W || y >= H || !passable(x, y))
           continue;
         // No corner cutting past a blocked cell.
-        if (dr != 0 && dc != 0 && (blocked[at(c + dc, r)] || blocked[at(c, r + dr)]))
+        if (dr != 0 && dc != 0 && (!passable(c + dc, r) || !passable(c, r + dr)))
           continue;
         const int nd = d + (dr != 0 && dc != 0 ? 14 : 10);
         if (nd < cost[at(x, y)]) {
@@ -457,8 +584,10 @@ VelocityCommand MapBuildingBehaviour::interior(const TelemetrySample& sample, co
       const double travelled = (pose.position() - move_start_).norm();
       if (wall_ahead) {
         const Vec2 hit = pose.position() + *front * pose.heading();
-        if (outline_ && insidePolygon(outline_->indices, hit) && !explained(hit)) {
+        if (outline_ && insidePolygon(outline_->indices, hit) && !explained(hit) &&
+            !visitedOften(hit)) {
           message_ = "obstacle met: circumnavigate counter-clockwise";
+          obstacle_anchor_ = hit;
           return startFollowing(pose, MapBuildingPhase::kObstacle);
         }
         blacklist(target_->position, 0.3);
@@ -487,6 +616,7 @@ VelocityCommand MapBuildingBehaviour::interior(const TelemetrySample& sample, co
     case Move::kApproach: {
       if (wall_ahead) {
         message_ = "obstacle reached: circumnavigate counter-clockwise";
+        obstacle_anchor_ = pose.position() + *front * pose.heading();
         return startFollowing(pose, MapBuildingPhase::kObstacle);
       }
       if ((pose.position() - move_start_).norm() > kApproachLimit_m) {
@@ -494,7 +624,7 @@ VelocityCommand MapBuildingBehaviour::interior(const TelemetrySample& sample, co
         move_ = Move::kNone;
         return {};
       }
-      return straightCommand(pose.theta, move_heading_, 0.75 * config_.travel_speed_mps);
+      return straightCommand(pose.theta, move_heading_, kApproachSpeed_mps);
     }
     default:
       move_ = Move::kNone;
@@ -554,7 +684,7 @@ void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
     along_max = std::max(along_max, a);
   }
   wall_points_.clear();
-  const double error = wrapAngle(quantiseAngle(dir, config_.heading_lattice_rad) - dir);
+  double error = wrapAngle(quantiseAngle(dir, config_.heading_lattice_rad) - dir);
   // Obstacles may have any shape: only a face already close to the lattice counts.
   const double capture = phase_ == MapBuildingPhase::kObstacle
                              ? config_.obstacle_heading_capture_rad
@@ -579,6 +709,20 @@ void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
     return;
   }
   pending_error_.reset();
+  // How much of the measured error to apply (scalar Kalman update on the heading): the fitted
+  // direction has variance sigma^2 / sum(along^2) (residual across the line over the spread
+  // along it) plus a floor for walls not exactly on the lattice; the heading's own variance
+  // grew with the distance and angle driven since the last revision. One noisy line then nudges
+  // the heading instead of replacing it, and successive lines on a long wall average.
+  const double fit_variance =
+      std::max(0.0, minor) / std::max(1e-9, n * std::max(1e-9, tr - minor)) +
+      std::pow(phase_ == MapBuildingPhase::kObstacle ? config_.obstacle_fit_floor_rad
+                                                     : config_.heading_fit_floor_rad,
+               2);
+  const double gain = heading_variance_ / (heading_variance_ + fit_variance);
+  const double measured = error;  // raw odometry error seen by this line (for the model below)
+  error *= gain;
+  heading_variance_ *= 1.0 - gain;
   heading_offset_ = wrapAngle(heading_offset_ + error);
   // Rotate the pose about the fitted wall's centre, so the wall the robot is beside stays
   // where it was mapped and only the heading (and what follows) is revised.
@@ -588,14 +732,18 @@ void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
   pose_.y = mean.y() + s * rel.x() + c * rel.y();
   pose_.theta = wrapAngle(pose_.theta + error);
   ++heading_corrections_;
-  // The revisions also calibrate the odometry. Between two revisions the raw odometry heading
-  // error grew by (error + what the model already applied); unequal wheel radii make it grow
-  // with the distance driven, a wrong wheelbase with the signed angle turned:
-  //   total_i = a * distance_i + k * turned_i   (a rad/m, k rad/rad)
+  // The revisions also calibrate the odometry. The heading revised so far against the raw
+  // odometry, R = (model applied) + (revisions accepted), is what the odometry got wrong since
+  // the start; unequal wheel radii make it grow with the distance driven, a wrong wheelbase with
+  // the signed angle turned:
+  //   R_i = a * D_i + k * T_i   (a rad/m, k rad/rad; D, T cumulative since the start)
   // a and k are the least-squares fit over all accepted revisions (lightly regularised and
-  // bounded, so a few revisions cannot teach an absurd rate).
-  const double total = error + applied_since_correction_rad_;
-  const double d = since, t = signed_turn_since_correction_rad_;
+  // bounded). Fitting the cumulative error, not the error between two revisions, keeps the fit
+  // noise of one line (~0.2 deg) from being divided by a short baseline: in a room without any
+  // odometry error the learned drift stays near zero instead of turning long interior legs.
+  const double d = cumulative_distance_m_, t = cumulative_turn_rad_;
+  const double total = cumulative_correction_rad_ + measured;
+  cumulative_correction_rad_ += error;
   drift_normal_[0] += d * d;
   drift_normal_[1] += d * t;
   drift_normal_[2] += t * t;
@@ -610,16 +758,16 @@ void MapBuildingBehaviour::fitWallHeading(const TelemetrySample& sample) {
     turn_scale_error_ = std::clamp((n00 * drift_rhs_[1] - n01 * drift_rhs_[0]) / normal_det,
                                    -kMaxTurnScaleError, kMaxTurnScaleError);
   }
-  applied_since_correction_rad_ = 0.0;
-  signed_turn_since_correction_rad_ = 0.0;
   distance_at_correction_ = distance_m_;
   turned_since_correction_rad_ = 0.0;
-  reviseAcrossWall(dir + error, mean, along_min, along_max);
+  reviseAcrossWall(dir + measured, mean, along_min, along_max);
 }
 
 void MapBuildingBehaviour::reviseAcrossWall(double direction, const Vec2& mean, double along_min,
                                             double along_max) {
-  // Lines are undirected: keep the direction in [0, pi).
+  // Lines are kept undirected, direction in [0, pi), with the side the robot saw them from
+  // (wall on the left: driving along +direction or against it), so that the two faces of a thin
+  // obstacle are different landmarks.
   double q = std::fmod(direction, kPi);
   if (q < 0.0)
     q += kPi;
@@ -627,41 +775,125 @@ void MapBuildingBehaviour::reviseAcrossWall(double direction, const Vec2& mean, 
     q = 0.0;
   const Vec2 t(std::cos(q), std::sin(q));
   const Vec2 n(-t.y(), t.x());
-  WallLandmark seen{q, n.dot(mean), t.dot(mean) + along_min, t.dot(mean) + along_max};
-  if (phase_ == MapBuildingPhase::kFollowWall && !outline_) {
-    // The first loop round the room has the least drift: its walls are the reference.
+  WallLandmark seen{q,
+                    n.dot(mean),
+                    t.dot(mean) + along_min,
+                    t.dot(mean) + along_max,
+                    std::cos(pose_.theta - q) >= 0.0,
+                    follow_epoch_,
+                    distance_m_,
+                    phase_ == MapBuildingPhase::kFollowWall && !outline_};
+  const auto same_line = [&](const WallLandmark& w) {
+    return w.forward == seen.forward && std::abs(wrapAngle(2.0 * (w.direction - q))) <= 1e-6;
+  };
+  const auto overlap = [&](const WallLandmark& w) {
+    return std::min(w.along_max, seen.along_max) - std::max(w.along_min, seen.along_min);
+  };
+  // The same wall seen again (same direction and side, overlapping, offset within the gate),
+  // on another loop or long enough ago that the drift since may show, moves the pose across it
+  // to where the wall was first mapped: the map stays consistent (no wall drawn twice) and the
+  // first loop round the room, which has the least drift, anchors the rest. An ambiguous match
+  // (another parallel landmark near) moves nothing. A wall not seen before becomes a landmark.
+  const WallLandmark* match = nullptr;
+  bool known = false;
+  for (const WallLandmark& w : landmarks_) {
+    if (!same_line(w) || overlap(w) < kLandmarkOverlap_m)
+      continue;
+    const double off = std::abs(w.offset - seen.offset);
+    if (off >= config_.position_gate_m)
+      continue;
+    known = true;
+    if (w.epoch == seen.epoch && seen.distance_m - w.distance_m < kLandmarkMinAge_m)
+      continue;
+    if (!match || off < std::abs(match->offset - seen.offset))
+      match = &w;
+  }
+  if (!known) {
     landmarks_.push_back(seen);
     return;
   }
-  if (!config_.position_revision)
-    return;
-  // The same wall seen again (same direction, overlapping, offset within the gate) moves the
-  // pose across it; an ambiguous match (another parallel landmark near) moves nothing.
-  const WallLandmark* match = nullptr;
-  for (const WallLandmark& w : landmarks_) {
-    if (std::abs(wrapAngle(2.0 * (w.direction - q))) > 1e-6)
-      continue;
-    const double overlap =
-        std::min(w.along_max, seen.along_max) - std::max(w.along_min, seen.along_min);
-    if (overlap < 0.3)
-      continue;
-    const double off = std::abs(w.offset - seen.offset);
-    if (off < config_.position_gate_m && (!match || off < std::abs(match->offset - seen.offset)))
-      match = &w;
-  }
-  if (!match)
+  if (!match || !config_.position_revision)
     return;
   // Several landmarks on one line (pieces of one wall) agree; parallel walls near do not.
   for (const WallLandmark& w : landmarks_)
-    if (std::abs(wrapAngle(2.0 * (w.direction - q))) <= 1e-6 &&
-        std::abs(w.offset - match->offset) > 0.05 &&
+    if (same_line(w) && std::abs(w.offset - match->offset) > 0.05 &&
         std::abs(w.offset - seen.offset) < 2.0 * config_.position_gate_m &&
-        std::min(w.along_max, seen.along_max) - std::max(w.along_min, seen.along_min) >= 0.3)
+        overlap(w) >= kLandmarkOverlap_m)
       return;
   const double shift = match->offset - seen.offset;
   pose_.x += shift * n.x();
   pose_.y += shift * n.y();
   ++position_corrections_;
+}
+
+void MapBuildingBehaviour::rangeToRoomWalls(const TelemetrySample& sample) {
+  // Revision (d) carried further: a sonar that points (within its cone) straight at a room
+  // wall traced on the first loop measures the distance across that wall, whatever the
+  // heading error, because the nearest return in the cone is the perpendicular one. Between
+  // wall-following runs (long interior legs, obstacle loops) this pins the position across the
+  // room walls, which heading revisions alone cannot: the map of the interior then stays on the
+  // outline. Readings are gated (within wall_ranging_gate_m of the prediction), need a clear
+  // built map between the sensor and the wall (an obstacle in front would return first), and
+  // move the pose by a fraction of the disagreement, so a stray echo nudges rather than jumps.
+  for (const SonarReading& r : sample.sonar) {
+    if (!r.echo || !std::isfinite(r.range_m) || r.sensor < 0 ||
+        static_cast<std::size_t>(r.sensor) >= profile_.sonars.size())
+      continue;
+    const SonarSpec& spec = profile_.sonars[static_cast<std::size_t>(r.sensor)];
+    if (r.range_m < kRangingMin_m || r.range_m > spec.max_range_m - 0.1)
+      continue;
+    const Pose2 sensor = pose_.compose(spec.mount);
+    const Vec2 u = sensor.heading();
+    const double cos_limit =
+        std::cos(std::max(0.0, 0.5 * spec.beam_width_rad - kRangingConeMargin_rad));
+    const WallLandmark* best = nullptr;
+    double best_predicted = 0.0;
+    Vec2 best_normal = Vec2::Zero();
+    for (const WallLandmark& w : landmarks_) {
+      if (!w.room)
+        continue;
+      const Vec2 t(std::cos(w.direction), std::sin(w.direction));
+      const Vec2 n(-t.y(), t.x());
+      const double signed_distance = n.dot(sensor.position()) - w.offset;
+      const double side = signed_distance >= 0.0 ? 1.0 : -1.0;
+      const double predicted = std::abs(signed_distance);
+      // The wall's normal towards it must lie inside the cone.
+      if (u.dot(-side * n) < cos_limit)
+        continue;
+      // The foot of the perpendicular on the traced piece of wall.
+      const double along = t.dot(sensor.position());
+      if (along < w.along_min - 0.1 || along > w.along_max + 0.1)
+        continue;
+      if (std::abs(predicted - r.range_m) > config_.wall_ranging_gate_m)
+        continue;
+      if (!best || predicted < best_predicted) {
+        best = &w;
+        best_predicted = predicted;
+        best_normal = -side * n;  // from the sensor towards the wall
+      }
+    }
+    if (!best)
+      continue;
+    // Nothing mapped between the sensor and the wall (centre and both cone edges).
+    bool clear = true;
+    for (int edge = -1; edge <= 1 && clear; ++edge) {
+      const double a = sensor.theta + edge * 0.5 * spec.beam_width_rad;
+      const Vec2 dir(std::cos(a), std::sin(a));
+      const double reach =
+          (best_predicted - kRangingClearance_m) / std::max(0.2, dir.dot(best_normal));
+      for (double d = 0.1; d < reach && clear; d += 0.5 * config_.explore_cell_m) {
+        const Vec2 q = sensor.position() + d * dir;
+        clear = grid_.isAddressable(q) && grid_.probability(grid_.cellAt(q)) < 0.65;
+      }
+    }
+    if (!clear)
+      continue;
+    // Move along the normal so that the predicted distance approaches the measured one.
+    const double innovation = best_predicted - r.range_m;  // > 0: closer to the wall than thought
+    pose_.x += config_.wall_ranging_gain * innovation * best_normal.x();
+    pose_.y += config_.wall_ranging_gain * innovation * best_normal.y();
+    ++range_corrections_;
+  }
 }
 
 VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
@@ -684,14 +916,21 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
   const double step_turn = odo_turn + model;
   pose_ = pose_.compose({step_body.x(), step_body.y(), step_turn});
   turned_since_correction_rad_ += std::abs(odo_turn);
-  signed_turn_since_correction_rad_ += odo_turn;
-  applied_since_correction_rad_ += model;
+  cumulative_distance_m_ += step_body.norm();
+  heading_variance_ += config_.heading_walk_rad2_per_m * step_body.norm() +
+                       config_.heading_walk_rad2_per_rad * std::abs(odo_turn);
+  cumulative_turn_rad_ += odo_turn;
+  cumulative_correction_rad_ += model;
   last_odometry_ = odo;
+  if (started_ && outline_ && config_.wall_ranging)
+    rangeToRoomWalls(raw);
   TelemetrySample sample = raw;
   sample.odometry_pose = pose_;
   const Pose2 pose = pose_;
   view_.update(sample);
   mapper_.integrate(sample, grid_);
+  if (config_.explore_range_m > 0.0)
+    explore_mapper_.integrate(sample, explore_grid_);
   if (!started_) {
     started_ = true;
     start_time_s_ = sample.time_s;

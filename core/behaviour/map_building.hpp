@@ -32,11 +32,19 @@ struct MapBuildingConfig {
   double index_spacing_m = 0.5;              // position indices along the followed wall
   double closure_radius_m = 0.35;            // back at an index when this close
   double min_loop_length_m = 1.5;            // path length before a loop may close
-  double map_valid_distance_m = 1.0;         // sonar readings mapped up to this range
+  // An obstacle loop that runs longer than this away from the room's walls is given up (several
+  // obstacles packed closer than the follower's reach merge into one long loop); what it passed
+  // counts as explained. (Along the outline it may run on: an obstacle near a wall can lead the
+  // follower round the room, which closes clockwise and is tried again.)
+  double max_obstacle_loop_m = 20.0;
+  double map_valid_distance_m = 1.0;  // sonar readings mapped up to this range
   double grid_resolution_m = 0.01;
-  double explore_cell_m = 0.1;       // coarse cell for interior targets and planning
+  double explore_cell_m = 0.1;  // coarse cell for interior targets and planning
+  // Free space seen by sonar up to this range (beyond the mapping range) counts as explored for
+  // the interior targets (a separate coarse knowledge grid; the built map is unchanged). 0: off.
+  double explore_range_m = 3.0;
   double clearance_margin_m = 0.06;  // added to the body radius when planning
-  double travel_speed_mps = 0.2;
+  double travel_speed_mps = 0.3;     // interior legs (known free space)
   // Frontiers (reachable free cells next to unknown space) anywhere, not only inside the first
   // closed outline: multi-room maps whose first loop did not enclose every room.
   bool explore_beyond_outline = true;
@@ -46,6 +54,13 @@ struct MapBuildingConfig {
   // the wall by the offset. Needs heading_lattice_rad > 0.
   bool position_revision = true;
   double position_gate_m = 0.3;
+  // Ranging to room walls: once the outline is closed, a sonar whose cone holds the normal of a
+  // room wall traced on the first loop, with nothing mapped in between, measures the distance
+  // across it; within wall_ranging_gate_m of the predicted distance the pose moves along the
+  // normal by wall_ranging_gain times the difference (per reading).
+  bool wall_ranging = true;
+  double wall_ranging_gate_m = 0.3;
+  double wall_ranging_gain = 0.1;
   double max_time_s = 3600.0;      // budget (time since the first sample)
   double max_distance_m = 1500.0;  // budget (odometry path length)
   SonarInverseModel sonar_model;
@@ -71,6 +86,14 @@ struct MapBuildingConfig {
   double heading_gate_per_m = degToRad(0.3);
   double heading_gate_per_turn = 0.006;  // rad per rad turned (wheelbase error ~0.5 %)
   double heading_confirm_rad = degToRad(1.0);
+  // An accepted correction is weighed against the heading's own uncertainty (scalar Kalman
+  // update): the heading variance grows by these per metre driven and per radian turned (the
+  // odometry error left after the learned model), a fitted line's variance is its fit variance
+  // plus the square of a floor (walls not exactly on the lattice; obstacle faces more so).
+  double heading_walk_rad2_per_m = degToRad(0.15) * degToRad(0.15);
+  double heading_walk_rad2_per_rad = degToRad(0.5) * degToRad(0.5);
+  double heading_fit_floor_rad = degToRad(0.1);
+  double obstacle_fit_floor_rad = degToRad(0.3);
 };
 
 // What is wrong with the config, or nothing.
@@ -123,6 +146,8 @@ class MapBuildingBehaviour : public Behaviour {
   double headingCorrection_rad() const { return heading_offset_; }
   int headingCorrections() const { return heading_corrections_; }
   int positionCorrections() const { return position_corrections_; }
+  // Sonar readings that moved the pose across a room wall (ranging, after the outline closed).
+  int rangeCorrections() const { return range_corrections_; }
   // Straight-wall fits whose correction disagreed with the drift expected since the last one.
   int headingRejections() const { return heading_rejections_; }
   // The learned odometry heading error: per metre driven and per radian turned.
@@ -154,6 +179,8 @@ class MapBuildingBehaviour : public Behaviour {
   WallFollower follower_;
   SonarMapper mapper_;
   OccupancyGrid grid_;
+  SonarMapper explore_mapper_;
+  OccupancyGrid explore_grid_;  // long-range free-space knowledge (explore_range_m)
   MapBuildingPhase phase_ = MapBuildingPhase::kScan;
   MapBuildingPhase after_pause_ = MapBuildingPhase::kInterior;
   std::string message_;
@@ -174,13 +201,15 @@ class MapBuildingBehaviour : public Behaviour {
   double distance_at_correction_ = 0.0;
   int heading_corrections_ = 0;
   int heading_rejections_ = 0;
-  double turned_since_correction_rad_ = 0.0;       // |angle| turned (odometry)
-  double signed_turn_since_correction_rad_ = 0.0;  // signed angle turned (odometry)
-  double applied_since_correction_rad_ = 0.0;      // heading the model added since
-  double turn_scale_error_ = 0.0;                  // learned heading error per radian turned
-  double drift_normal_[3] = {0.0, 0.0, 0.0};       // least-squares sums d*d, d*t, t*t
-  double drift_rhs_[2] = {0.0, 0.0};               // d*total, t*total
-  std::optional<double> pending_error_;            // a large correction waiting for confirmation
+  double turned_since_correction_rad_ = 0.0;  // |angle| turned (odometry)
+  double turn_scale_error_ = 0.0;             // learned heading error per radian turned
+  double drift_normal_[3] = {0.0, 0.0, 0.0};  // least-squares sums d*d, d*t, t*t
+  double drift_rhs_[2] = {0.0, 0.0};          // d*total, t*total
+  double cumulative_distance_m_ = 0.0;        // odometry distance since the start
+  double cumulative_turn_rad_ = 0.0;          // signed odometry turn since the start
+  double cumulative_correction_rad_ = 0.0;    // revised minus raw odometry heading
+  double heading_variance_ = 0.0;             // of the revised heading, rad^2
+  std::optional<double> pending_error_;       // a large correction waiting for confirmation
   std::vector<Vec2> wall_points_;
   void fitWallHeading(const TelemetrySample& sample);
   struct WallLandmark {
@@ -188,8 +217,15 @@ class MapBuildingBehaviour : public Behaviour {
     double offset = 0.0;     // along the normal (-sin, cos) of the direction, m
     double along_min = 0.0;  // extent along the direction, m
     double along_max = 0.0;
+    bool forward = true;      // seen while driving along +direction (the wall's side)
+    int epoch = 0;            // follow_epoch_ when seen
+    double distance_m = 0.0;  // distance travelled when seen
+    bool room = false;        // traced on the first loop round the room
   };
   std::vector<WallLandmark> landmarks_;
+  int follow_epoch_ = 0;  // counts wall/obstacle follows and loop closures
+  int range_corrections_ = 0;
+  void rangeToRoomWalls(const TelemetrySample& sample);
   int position_corrections_ = 0;
   void reviseAcrossWall(double direction, const Vec2& mean, double along_min, double along_max);
 
@@ -206,9 +242,14 @@ class MapBuildingBehaviour : public Behaviour {
   std::vector<double> index_heading_;
   std::vector<Vec2> all_indices_;
   double loop_distance_m_ = 0.0;
+  double loop_interior_m_ = 0.0;  // of an obstacle loop, away from the room's outline
   double next_index_at_m_ = 0.0;
   std::optional<TracedLoop> outline_;
   std::vector<TracedLoop> obstacle_loops_;
+  std::vector<TracedLoop> pocket_loops_;  // clockwise loops inside the room (obstacle pockets)
+  std::optional<Vec2> obstacle_anchor_;   // the surface point the current obstacle loop began at
+  std::vector<Vec2> obstacle_anchors_;    // where every obstacle loop so far began
+  bool visitedOften(const Vec2& p) const;
   bool first_wall_was_obstacle_ = false;
 
   // Interior moves.
