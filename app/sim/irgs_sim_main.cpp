@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,13 @@
 #include "app/sim/linked_run.hpp"
 #include "app/sim/localization_run.hpp"
 #include "app/sim/sim_options.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/scenario/scenario_outputs.hpp"
 #include "core/scenario/scenario_runner.hpp"
 #include "core/sim/drive_script.hpp"
 #include "core/world/map_file.hpp"
+#include "core/world/ros_map.hpp"
 
 namespace {
 
@@ -52,6 +55,36 @@ extern "C" void onInterrupt(int) {
   g_interrupted.store(true);
 }
 
+void printOutcome(const irgs::app::BehaviourRunOutcome& outcome, bool quiet) {
+  if (!outcome.error.empty())
+    std::fprintf(stderr, "irgs-sim: %s\n", outcome.error.c_str());
+  if (!quiet || outcome.exit_code != 0) {
+    if (!outcome.summary.empty())
+      std::printf("irgs-sim: %s\n", outcome.summary.c_str());
+    if (!quiet)
+      for (const auto& path : outcome.written)
+        std::printf("  wrote %s\n", path.string().c_str());
+  }
+}
+
+// --compare names a map an earlier run saved: read it before driving anything, so a typo costs
+// nothing (the run itself may take minutes on a linked robot).
+bool compareReferenceReadable(const irgs::app::SimOptions& options) {
+  if (options.compare.empty())
+    return true;
+  const auto reference = irgs::loadRosMap(options.compare);
+  if (reference.raster)
+    return true;
+  printDiagnostics(reference.diagnostics);
+  std::fprintf(stderr, "irgs-sim: cannot read the --compare map %s\n",
+               options.compare.string().c_str());
+  return false;
+}
+
+double wallSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
   const auto robot_path = options.robot.empty() ? bundledRobotProfile(argv0) : options.robot;
   auto robot = irgs::loadRobotProfileFile(robot_path);
@@ -59,6 +92,18 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
   if (!robot.profile) {
     std::fprintf(stderr, "irgs-sim: cannot load robot profile %s\n", robot_path.string().c_str());
     return kExitFiles;
+  }
+  // The map, when given, is the frame the robot starts in (--start or its start pose), what
+  // goal and coverage plan on and what the built map is scored against.
+  std::optional<irgs::WorldMap> map;
+  if (!options.map.empty()) {
+    auto loaded = irgs::loadAnyMap(options.map);
+    printDiagnostics(loaded.diagnostics);
+    if (!loaded.map) {
+      std::fprintf(stderr, "irgs-sim: cannot load map %s\n", options.map.string().c_str());
+      return kExitFiles;
+    }
+    map = std::move(*loaded.map);
   }
   irgs::app::LinkedRunSpec spec;
   if (!options.script.empty()) {
@@ -72,12 +117,29 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
     spec.script = std::move(*script.script);
   }
   spec.url = options.connect;
-  spec.profile = std::move(*robot.profile);
-  spec.duration_s = options.duration_s.value_or(
-      spec.script.empty() ? 60.0 : std::max(spec.script.lastTime_s(), 0.1));
+  spec.profile = *robot.profile;
+  spec.anchor =
+      options.start ? options.start : (map ? std::optional<irgs::Pose2>(map->start) : std::nullopt);
+  if (!compareReferenceReadable(options))
+    return kExitFiles;
+  irgs::app::BehaviourJob job;
+  if (!options.behaviour.empty()) {
+    const irgs::Pose2 start = spec.anchor.value_or(irgs::Pose2{});
+    if (const auto error = irgs::app::prepareBehaviourJob(options, map ? &*map : nullptr,
+                                                          spec.profile, start, job)) {
+      std::fprintf(stderr, "irgs-sim: %s\n", error->c_str());
+      return kExitLink;  // the behaviour could not start: nothing was driven
+    }
+    spec.behaviour = job.behaviour.get();
+    spec.duration_s = options.duration_s.value_or(3600.0);
+  } else {
+    spec.duration_s = options.duration_s.value_or(
+        spec.script.empty() ? 60.0 : std::max(spec.script.lastTime_s(), 0.1));
+  }
   spec.connect_timeout_s = options.connect_timeout_s;
   spec.grid_resolution_m = options.grid_resolution_m;
   spec.cancel = &g_interrupted;
+  spec.wall_clock = wallSeconds;
   if (!options.quiet)
     spec.log = [](const std::string& line) {
       std::printf("irgs-sim: %s\n", line.c_str());
@@ -90,7 +152,7 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
 
-  const irgs::app::LinkedRunResult run = irgs::app::runLinkedScenario(spec);
+  irgs::app::LinkedRunResult run = irgs::app::runLinkedScenario(spec);
   if (!run.result) {
     std::fprintf(stderr, "irgs-sim: %s\n", run.error.c_str());
     return run.cancelled ? kExitInterrupted : kExitLink;
@@ -99,27 +161,31 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
       options.map.empty() ? "linked robot" : options.map.filename().string();
   const irgs::ScenarioRunInfo info{map_name + " via " + options.connect, spec.profile.name,
                                    options.seed};
+  const std::string link_json = irgs::app::linkedRunJson(spec, run);
+
+  if (spec.behaviour) {
+    irgs::BehaviourScenarioResult result{std::move(*run.result), run.behaviour};
+    irgs::app::BehaviourOutputInfo out_info;
+    out_info.run = info;
+    out_info.truth = map ? &*map : nullptr;
+    out_info.clock = "of robot time";
+    out_info.extra_files = {{"link.json", link_json}};
+    out_info.extra["link"] = {{"protocol", run.protocol},
+                              {"truth", "odometry (no ground truth from a linked robot)"}};
+    const auto outcome = irgs::app::writeBehaviourOutputs(options, job, result, out_info);
+    printOutcome(outcome, options.quiet);
+    if (outcome.exit_code == kExitFiles)
+      return kExitFiles;
+    return run.cancelled ? kExitInterrupted : outcome.exit_code;
+  }
+
   auto written = irgs::writeScenarioOutputs(*run.result, info, options.out);
   if (written.error.empty()) {
-    // Same atomic pattern as the other outputs: a temporary file renamed into place.
     const std::filesystem::path target = options.out / "link.json";
-    const std::filesystem::path temp = options.out / "link.json.tmp";
-    if (FILE* f = std::fopen(temp.c_str(), "wb")) {
-      const std::string text = irgs::app::linkedRunJson(spec, run);
-      const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-      if (std::fclose(f) == 0 && ok) {
-        std::error_code ec;
-        std::filesystem::rename(temp, target, ec);
-        if (ec)
-          written.error = "cannot write " + target.string() + ": " + ec.message();
-        else
-          written.written.push_back(target);
-      } else {
-        written.error = "cannot write " + temp.string();
-      }
-    } else {
-      written.error = "cannot write " + temp.string();
-    }
+    if (const auto error = irgs::writeFileAtomically(target, link_json))
+      written.error = *error;
+    else
+      written.written.push_back(target);
   }
   if (!written.error.empty()) {
     std::fprintf(stderr, "irgs-sim: %s\n", written.error.c_str());
@@ -128,10 +194,12 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
   if (!options.quiet) {
     const auto& m = run.result->metrics;
     std::printf(
-        "irgs-sim: %.1f s on %s, %llu samples, %.2f m driven (odometry), explored %.2f m2%s\n"
+        "irgs-sim: %.1f s on %s (%s), %llu samples, %.2f m driven (odometry), explored %.2f "
+        "m2%s\n"
         "  no ground truth from a linked robot: true_* columns repeat the odometry\n",
-        m.duration_s, options.connect.c_str(), static_cast<unsigned long long>(run.samples),
-        m.distance_travelled_m, m.explored_area_m2, run.cancelled ? " (interrupted)" : "");
+        m.duration_s, options.connect.c_str(), run.protocol.c_str(),
+        static_cast<unsigned long long>(run.samples), m.distance_travelled_m, m.explored_area_m2,
+        run.cancelled ? " (interrupted)" : "");
     for (const auto& path : written.written)
       std::printf("  wrote %s\n", path.string().c_str());
   }
@@ -182,20 +250,11 @@ int main(int argc, char** argv) {
   }
 
   if (!options.behaviour.empty()) {
-    const auto clock = [] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-          .count();
-    };
-    const auto outcome = irgs::app::runBehaviourMode(options, *map.map, *robot.profile, clock);
-    if (!outcome.error.empty())
-      std::fprintf(stderr, "irgs-sim: %s\n", outcome.error.c_str());
-    if (!options.quiet || outcome.exit_code != 0) {
-      if (!outcome.summary.empty())
-        std::printf("irgs-sim: %s\n", outcome.summary.c_str());
-      if (!options.quiet)
-        for (const auto& path : outcome.written)
-          std::printf("  wrote %s\n", path.string().c_str());
-    }
+    if (!compareReferenceReadable(options))
+      return kExitFiles;
+    const auto outcome =
+        irgs::app::runBehaviourMode(options, *map.map, *robot.profile, wallSeconds);
+    printOutcome(outcome, options.quiet);
     return outcome.exit_code;
   }
 

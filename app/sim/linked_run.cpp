@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "comms/robot/linked_robot.hpp"
+#include "app/sim/link_adapter.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "core/mapping/sonar_mapper.hpp"
 
@@ -20,7 +20,11 @@ namespace irgs::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr auto kLoopPeriod = std::chrono::milliseconds(16);  // drain like the GUI (60 Hz)
+// A script holds each command for a while: drain like the GUI (60 Hz). A behaviour answers
+// every sample, and its answer should reach the robot with the least added delay (the
+// simulator applies it at the next step): poll faster.
+constexpr auto kScriptLoopPeriod = std::chrono::milliseconds(16);
+constexpr auto kBehaviourLoopPeriod = std::chrono::milliseconds(4);
 
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -34,6 +38,16 @@ std::string seconds(double s) {
 
 bool positive(double v) {
   return std::isfinite(v) && v > 0.0;
+}
+
+// p^-1, so that p.compose(inverse(p)) is the identity.
+Pose2 inverse(const Pose2& p) {
+  const double c = std::cos(p.theta), s = std::sin(p.theta);
+  return {-(c * p.x + s * p.y), s * p.x - c * p.y, wrapAngle(-p.theta)};
+}
+
+nlohmann::ordered_json poseJson(const Pose2& p) {
+  return {{"x", p.x}, {"y", p.y}, {"theta_deg", radToDeg(p.theta)}};
 }
 
 }  // namespace
@@ -51,6 +65,7 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
       spec.log(line);
   };
   auto cancelled = [&] { return spec.cancel != nullptr && spec.cancel->load(); };
+  const double wall_start = spec.wall_clock ? spec.wall_clock() : 0.0;
 
   const auto url = comms::parseLinkUrl(spec.url);
   if (!url.url) {
@@ -58,15 +73,17 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
     return out;
   }
   comms::IoThread io;
-  auto opened = comms::LinkedRobot::open(io, *url.url, spec.profile);
-  if (!opened.robot) {
+  auto opened = openLinkAdapter(io, *url.url, spec.profile);
+  if (!opened.adapter) {
     out.error = "cannot open " + spec.url + ": " + opened.error;
     return out;
   }
-  comms::LinkedRobot& robot = *opened.robot;
+  LinkAdapter& link = *opened.adapter;
+  Robot& robot = link.robot();
+  out.protocol = std::string(link.protocol());
   std::string last_event;
   auto drainEvents = [&] {
-    for (const auto& e : robot.takeEvents()) {
+    for (const auto& e : link.takeEvents()) {
       last_event = e.text;
       log(std::string(comms::toString(e.kind)) + ": " + e.text);
     }
@@ -77,39 +94,61 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   const Clock::time_point connect_start = Clock::now();
   while (!cancelled()) {
     drainEvents();
-    for (auto& s : robot.update(0.0))
+    for (auto& s : link.update())
       pending.push_back(std::move(s));
-    if (robot.linkState() == comms::LinkState::kConnected && !pending.empty())
+    if (link.linkState() == comms::LinkState::kConnected && !pending.empty())
       break;
     if (secondsSince(connect_start) > spec.connect_timeout_s) {
-      out.error = robot.linkState() == comms::LinkState::kConnected
+      const bool arcos = out.protocol == "arcos";
+      out.error = link.linkState() == comms::LinkState::kConnected
                       ? "the robot at " + spec.url + " is connected but sent no odometry within " +
                             seconds(spec.connect_timeout_s) + " s"
-                      : "no robot heartbeat from " + spec.url + " within " +
-                            seconds(spec.connect_timeout_s) + " s" +
+                      : std::string(arcos ? "no ARCOS robot answered (SYNC/SIP) at "
+                                          : "no robot heartbeat from ") +
+                            spec.url + " within " + seconds(spec.connect_timeout_s) + " s" +
                             (last_event.empty() ? "" : " (last: " + last_event + ")");
-      out.link_stats = robot.linkStats();
+      out.link_stats = link.linkStats();
       return out;
     }
-    std::this_thread::sleep_for(kLoopPeriod);
+    std::this_thread::sleep_for(kScriptLoopPeriod);
   }
   if (cancelled() && pending.empty()) {
     out.error = "interrupted before the robot was connected";
     out.cancelled = true;
     return out;
   }
-  log("connected to " + robot.describe() + ": running the script for " + seconds(spec.duration_s) +
-      " s");
+  out.robot = robot.describe();
+  log("connected to " + out.robot + ": " +
+      (spec.behaviour ? "running " + std::string(spec.behaviour->name()) + " (budget " +
+                            seconds(spec.duration_s) + " s)"
+                      : "running the script for " + seconds(spec.duration_s) + " s"));
 
-  // 2. Drive the script on the wall clock and integrate every sample.
+  // Map frame <- the robot's odometry frame: puts the first sample at the anchor.
+  out.first_odometry = pending.front().odometry_pose;
+  const Pose2 to_map = spec.anchor ? spec.anchor->compose(inverse(*out.first_odometry)) : Pose2{};
+  auto anchored = [&](TelemetrySample s) {
+    if (spec.anchor) {
+      s.odometry_pose = to_map.compose(s.odometry_pose);
+      if (s.true_pose)
+        s.true_pose = to_map.compose(*s.true_pose);
+    }
+    return s;
+  };
+
+  // 2. Drive (script on the wall clock, or the behaviour on every sample); integrate samples.
   ScenarioResult result{OccupancyGrid(spec.grid_resolution_m), {}, {}};
   ScenarioMetrics& m = result.metrics;
+  BehaviourMetrics& b = out.behaviour;
+  if (spec.behaviour)
+    b.behaviour = std::string(spec.behaviour->name());
   std::optional<double> first_time_s;
   std::optional<double> next_row_s;
   std::optional<Pose2> previous_pose;
   std::uint32_t previous_bumpers = 0;
   VelocityCommand command;
+  bool was_turning = false;
   TrajectoryRow last_row;
+  // Returns the robot time of the sample relative to the first one.
   auto integrate = [&](const TelemetrySample& s) {
     ++out.samples;
     if (!first_time_s) {
@@ -136,52 +175,93 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
       while (*next_row_s <= s.time_s + 1e-9)
         *next_row_s += spec.trajectory_period_s;
     }
+    return t;
+  };
+  // The behaviour's answer to one sample, with the same bookkeeping as runBehaviourScenario.
+  auto consult = [&](const TelemetrySample& s, double t) {
+    command = spec.behaviour->onSample(s);
+    if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps))
+      command = {};  // a behaviour bug must not reach the robot
+    const bool turning = command.linear_mps == 0.0 && command.angular_radps != 0.0;
+    if (turning && !was_turning)
+      ++b.turns;
+    was_turning = turning;
+    const BehaviourStatus status = spec.behaviour->status();
+    if (b.phases.empty() || b.phases.back().phase != status.phase)
+      b.phases.push_back({status.phase, t, t});
+    b.phases.back().end_s = t;
+    if (status.finished) {
+      b.finished = true;
+      b.failed = status.failed;
+      b.message = status.message;
+      command = {};
+    }
+    last_row.command = command;
+    if (!result.trajectory.empty() && result.trajectory.back().time_s == t)
+      result.trajectory.back().command = command;  // the row of this sample holds the answer
+  };
+  auto take = [&](const TelemetrySample& raw) {
+    const TelemetrySample s = anchored(raw);
+    const double t = integrate(s);
+    if (spec.behaviour && !b.finished)
+      consult(s, t);
   };
   for (const auto& s : pending)
-    integrate(s);
+    take(s);
   pending.clear();
 
   const Clock::time_point run_start = Clock::now();
+  const auto period = spec.behaviour ? kBehaviourLoopPeriod : kScriptLoopPeriod;
   bool was_connected = true;
-  while (!cancelled()) {
+  std::string last_phase = b.phases.empty() ? "" : b.phases.back().phase;
+  while (!cancelled() && !b.finished) {
     const double elapsed = secondsSince(run_start);
     if (elapsed >= spec.duration_s)
       break;
-    command = spec.script.commandAt(elapsed);
-    robot.drive(command);  // sent when it changes; LinkedRobot repeats it while non-zero
-    for (const auto& s : robot.update(0.0))
-      integrate(s);
+    if (!spec.behaviour)
+      command = spec.script.commandAt(elapsed);
+    robot.drive(command);  // sent when it changes; the adapter repeats it while non-zero
+    for (const auto& s : link.update())
+      take(s);
+    if (spec.behaviour) {
+      robot.drive(command);  // the answer to the newest sample, at once
+      if (!b.phases.empty() && b.phases.back().phase != last_phase) {
+        last_phase = b.phases.back().phase;
+        log("phase: " + last_phase + " at " + seconds(b.phases.back().start_s) + " s");
+      }
+    }
     drainEvents();
-    const bool connected = robot.linkState() == comms::LinkState::kConnected;
+    const bool connected = link.linkState() == comms::LinkState::kConnected;
     if (connected && !was_connected)
-      log("link back: the script continues at " + seconds(elapsed) + " s");
+      log(std::string("link back: the ") + (spec.behaviour ? "behaviour" : "script") +
+          " continues at " + seconds(elapsed) + " s");
     was_connected = connected;
-    std::this_thread::sleep_for(kLoopPeriod);
+    std::this_thread::sleep_for(period);
   }
   out.cancelled = cancelled();
-
-  // 3. Stop the robot and wait (bounded) for the acknowledgement and the last samples.
-  command = {};
-  std::atomic<bool> acked{false};
-  std::atomic<bool> answered{false};
-  robot.drive({});
-  robot.sendBehaviour({.kind = comms::RobotBehaviourKind::kStop},
-                      [&acked, &answered](const comms::CommandResult& r) {
-                        acked = r.outcome == comms::CommandOutcome::kAccepted;
-                        answered = true;
-                      });
-  const Clock::time_point stop_start = Clock::now();
-  while (!answered && secondsSince(stop_start) < spec.stop_timeout_s) {
-    for (const auto& s : robot.update(0.0))
-      integrate(s);
-    drainEvents();
-    std::this_thread::sleep_for(kLoopPeriod);
+  if (spec.behaviour && !b.finished) {
+    b.failed = true;
+    b.message = out.cancelled ? "interrupted (" + spec.behaviour->status().phase + ")"
+                              : "time budget of " + seconds(spec.duration_s) +
+                                    " s used up before the behaviour finished (" +
+                                    spec.behaviour->status().phase + ")";
   }
-  out.stop_acknowledged = acked;
+
+  // 3. Stop the robot and wait (bounded) for the confirmation and the last samples.
+  command = {};
+  link.requestStop();
+  const Clock::time_point stop_start = Clock::now();
+  while (!link.stopConfirmed() && secondsSince(stop_start) < spec.stop_timeout_s) {
+    for (const auto& s : link.update())
+      take(s);
+    drainEvents();
+    std::this_thread::sleep_for(kScriptLoopPeriod);
+  }
+  out.stop_acknowledged = link.stopConfirmed().value_or(false);
   if (!out.stop_acknowledged)
-    log("warning: the robot did not acknowledge the final stop (its teleop timeout stops it)");
-  for (const auto& s : robot.update(0.0))
-    integrate(s);
+    log("warning: the robot did not confirm the final stop (its own watchdog stops it)");
+  for (const auto& s : link.update())
+    take(s);
   drainEvents();
   if (out.samples > 0 &&
       (result.trajectory.empty() || result.trajectory.back().time_s != last_row.time_s))
@@ -196,8 +276,9 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   m.odometry_position_error_m = std::numeric_limits<double>::quiet_NaN();
   m.odometry_heading_error_rad = std::numeric_limits<double>::quiet_NaN();
   m.explored_area_m2 = result.grid.exploredArea_m2();
-  out.dropped_samples = robot.droppedSamples();
-  out.link_stats = robot.linkStats();
+  b.wall_clock_s = spec.wall_clock ? spec.wall_clock() - wall_start : 0.0;
+  out.dropped_samples = link.droppedSamples();
+  out.link_stats = link.linkStats();
   out.result = std::move(result);
   return out;
 }
@@ -205,9 +286,18 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
 std::string linkedRunJson(const LinkedRunSpec& spec, const LinkedRunResult& r) {
   nlohmann::ordered_json doc;
   doc["url"] = spec.url;
+  doc["protocol"] = r.protocol;
+  doc["robot"] = r.robot;
   doc["truth"] =
       "not available from a linked robot: trajectory.csv true_* columns and final_true_pose "
       "repeat the odometry, odometry_error is not measured (null), grid.png shows one path";
+  if (spec.anchor && r.first_odometry) {
+    doc["anchor"] = {{"map_start", poseJson(*spec.anchor)},
+                     {"robot_first_odometry", poseJson(*r.first_odometry)},
+                     {"note", "odometry re-expressed so that the first sample lies at map_start"}};
+  } else {
+    doc["anchor"] = nullptr;
+  }
   doc["cancelled"] = r.cancelled;
   doc["stop_acknowledged"] = r.stop_acknowledged;
   doc["samples"] = r.samples;

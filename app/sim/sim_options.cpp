@@ -51,12 +51,19 @@ live sonar grid is built, then writes the results.
   --resolution M    grid cell size in metres (default: 0.01)
   --ideal           no odometry error and no sensor noise
   --quiet           print nothing on success
-  --connect URL     run the script on a robot behind a MAVLink link instead of the simulator
-                    (serial:///dev/ttyUSB0?baud=115200, tcp://host:5760, udp://:14550); the
-                    script runs on the wall clock, the robot is stopped at the end and on
-                    Ctrl-C; --map is optional (only its name is recorded), --start, --ideal
-                    are refused. Also writes link.json (link statistics; no ground truth: the
-                    true_* columns repeat the odometry, the odometry error is null)
+  --connect URL     run on a robot behind a link instead of the simulator: MAVLink
+                    (serial:///dev/ttyUSB0?baud=115200, tcp://host:5760, udp://:14550) or
+                    ARCOS/P2OS with ?protocol=arcos (a Pioneer, MobileSim/AMRISim on
+                    tcp://localhost:8101?protocol=arcos, irgs-robot --protocol arcos). The script
+                    or --behaviour runs on the wall clock, the robot is stopped at the end and on
+                    Ctrl-C. --map is optional (its name is recorded; with --behaviour mapbuild
+                    the built map is scored against it; goal and coverage plan on it); --start
+                    (default: the --map's start pose) says where the robot stands in the map
+                    frame when the run begins: the odometry is re-expressed so that its first
+                    sample lies there; without --map and --start the odometry is used as it
+                    comes. --ideal is refused. Also writes link.json (protocol, link statistics;
+                    no ground truth: the true_* columns repeat the odometry, the odometry error
+                    is null)
   --connect-timeout S  seconds to wait for the robot's heartbeat and first odometry (10)
   --behaviour B     a behaviour drives the robot instead of a script: mapbuild (autonomous
                     sonar map building: wall following, loop closing, interior, obstacles),
@@ -67,6 +74,10 @@ live sonar grid is built, then writes the results.
                     object (phases with times, turns, wall clock) and map_score (F1 of the
                     built map against the true map), plan or coverage
   --goal X,Y        goal position in metres for --behaviour goal
+  --compare FILE    with --behaviour mapbuild: also score the built map against a map an
+                    earlier run saved (its grid.yaml), e.g. the in-process run of the same
+                    scenario against the linked one: map_agreement (precision, recall, F1 with
+                    the same 2-cell tolerance) in metrics.json
   --route X,Y;X,Y   waypoints (metres) the robot drives in order for --localize ('/' may
                     separate the points instead of ';')
   --localize E      localization experiment with estimator E: ekf (stereo-sonar EKF of paper
@@ -164,6 +175,10 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
       }
       if (options.route.empty())
         return fail("--route needs at least one X,Y waypoint");
+    } else if (arg == "--compare") {
+      if (value.empty())
+        return fail("--compare needs a map YAML file (grid.yaml of an earlier run)");
+      options.compare = value;
     } else if (arg == "--goal") {
       const auto comma = value.find(',');
       const auto x = parseDouble(value.substr(0, comma));
@@ -187,17 +202,13 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
     }
   }
   if (!options.connect.empty()) {
-    // A real robot's pose and sensors are its own: nothing to place, nothing to idealise.
-    if (options.start)
-      return fail("--start cannot move a linked robot (--connect); drive it there instead");
+    // A real robot's sensors are its own: nothing to idealise. (--start only says where it is.)
     if (options.ideal)
       return fail("--ideal has no meaning for a linked robot (--connect)");
   } else if (options.map.empty()) {
     return fail("--map FILE is required (see --help)");
   }
   if (!options.behaviour.empty()) {
-    if (!options.connect.empty())
-      return fail("--behaviour runs in the simulator only; it cannot be combined with --connect");
     if (!options.script.empty())
       return fail("--behaviour drives the robot itself; it cannot be combined with --script");
     if (options.behaviour == "goal" && !options.goal)
@@ -211,6 +222,8 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
     return fail("--route is only used with --localize");
   if (!options.route.empty() && !options.script.empty())
     return fail("--route and --script both drive the robot: give one");
+  if (!options.compare.empty() && options.behaviour != "mapbuild")
+    return fail("--compare is only used with --behaviour mapbuild");
   if (options.goal && options.behaviour != "goal")
     return fail("--goal is only used with --behaviour goal");
   if (options.out.empty())

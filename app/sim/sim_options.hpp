@@ -22,13 +22,19 @@ struct SimOptions {
   double grid_resolution_m = 0.01;
   bool ideal = false;  // no odometry error and no sensor noise
   bool quiet = false;
-  // --connect URL: drive a robot behind a MAVLink link instead of the in-process simulator.
+  // --connect URL: drive a robot behind a link (MAVLink, or ARCOS with ?protocol=arcos) instead
+  // of the in-process simulator. With --connect, --start (default: the --map's start pose) is
+  // where the robot stands in the map frame when the run begins: its odometry is re-expressed
+  // so that the first sample lies there (app/sim/linked_run.hpp).
   std::string connect;
   double connect_timeout_s = 10.0;  // --connect-timeout: link up and first sample
   // --behaviour mapbuild|goal|coverage: a host behaviour drives the simulated robot instead of
   // a script (app/sim/behaviour_run.hpp); --goal X,Y (metres) for "goal".
   std::string behaviour;
   std::optional<Vec2> goal;
+  // --compare FILE: a map saved by an earlier run (grid.yaml); mapbuild scores its built map
+  // against it too (map_agreement in metrics.json, app/sim/map_compare.hpp).
+  std::filesystem::path compare;
   // --localize ekf|dr|encoder-gyro: a localization experiment (app/sim/localization_run.hpp).
   std::string localize;
   std::vector<Vec2> route;  // --route X,Y;X,Y;...: waypoints for --localize (default: map graph)

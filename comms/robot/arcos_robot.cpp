@@ -7,6 +7,7 @@
 #include <future>
 #include <mutex>
 #include <stdexcept>
+#include <utility>
 
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -231,6 +232,7 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
     }
     const std::lock_guard lock(mutex);
     for (auto& s : converted) {
+      noteArrival(s, t);
       samples.push_back(std::move(s));
       if (samples.size() > config.max_pending_samples) {
         samples.pop_front();
@@ -251,6 +253,16 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
     stats_snapshot.reconnect_attempts = reconnect_attempts;
     if (session_stats.last_sip_s)
       stats_snapshot.since_heartbeat_s = t - *session_stats.last_sip_s;
+  }
+
+  // Rate bookkeeping (caller holds `mutex`): arrival time and sonar count of every sample,
+  // kept for ArcosTelemetryRates::kWindow_s.
+  void noteArrival(const TelemetrySample& sample, double t) {
+    ++total_samples;
+    total_sonar_readings += sample.sonar.size();
+    arrivals.push_back({t, sample.sonar.size()});
+    while (!arrivals.empty() && arrivals.front().first < t - ArcosTelemetryRates::kWindow_s)
+      arrivals.pop_front();
   }
 
   void shutdownNow() {
@@ -299,6 +311,9 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   std::deque<TelemetrySample> samples;
   std::deque<LinkEvent> events;
   std::uint64_t dropped_samples = 0;
+  std::uint64_t total_samples = 0;
+  std::uint64_t total_sonar_readings = 0;
+  std::deque<std::pair<double, std::size_t>> arrivals;  // (arrival s, sonar readings)
   arc::ArcosState state_snapshot = arc::ArcosState::kDisconnected;
   std::optional<arc::RobotIdentity> identity_snapshot;
   arc::ArcosStats session_stats;
@@ -443,6 +458,37 @@ std::optional<arcos::RobotIdentity> ArcosRobot::identity() const {
 std::uint64_t ArcosRobot::droppedSamples() const {
   const std::lock_guard lock(impl_->mutex);
   return impl_->dropped_samples;
+}
+
+ArcosTelemetryRates ArcosRobot::telemetryRates() const {
+  const std::lock_guard lock(impl_->mutex);
+  ArcosTelemetryRates rates;
+  rates.samples = impl_->total_samples;
+  rates.sonar_readings = impl_->total_sonar_readings;
+  // Only arrivals within the window of now count (a silent link reads 0 Hz). Several SIPs can
+  // arrive in one read: the rate is taken over the window's span, the first arrival opening it
+  // (as LinkedRobotHandle does on the robot's clock).
+  const double oldest_s = impl_->now() - ArcosTelemetryRates::kWindow_s;
+  std::vector<std::pair<double, std::size_t>> recent;
+  for (const auto& arrival : impl_->arrivals) {
+    if (arrival.first >= oldest_s)
+      recent.push_back(arrival);
+  }
+  if (recent.size() < 2)
+    return rates;
+  const double span_s = recent.back().first - recent.front().first;
+  if (!(span_s > 0.0))
+    return rates;
+  std::size_t with_sonar = 0;
+  std::size_t readings = 0;
+  for (std::size_t i = 1; i < recent.size(); ++i) {
+    with_sonar += recent[i].second > 0 ? 1 : 0;
+    readings += recent[i].second;
+  }
+  rates.sample_hz = static_cast<double>(recent.size() - 1) / span_s;
+  rates.sonar_hz = static_cast<double>(with_sonar) / span_s;
+  rates.sonar_readings_per_s = static_cast<double>(readings) / span_s;
+  return rates;
 }
 
 }  // namespace irgs::comms

@@ -53,6 +53,18 @@ struct ArcosVelocityArguments {
 ArcosVelocityArguments arcosVelocityArguments(const VelocityCommand& command,
                                               const MotionLimits& limits);
 
+// What the ground station receives, counted since open() and measured on this adapter's clock
+// (SIP arrival times) over the last kWindow_s: the ARCOS counterpart of the MAVLink link's
+// telemetry rates (a standard SIP is one odometry sample with that cycle's sonar readings).
+struct ArcosTelemetryRates {
+  static constexpr double kWindow_s = 3.0;
+  std::uint64_t samples = 0;         // SIPs converted to TelemetrySamples
+  std::uint64_t sonar_readings = 0;  // readings in them (echo or not)
+  double sample_hz = 0.0;
+  double sonar_hz = 0.0;  // samples carrying at least one sonar reading, per second
+  double sonar_readings_per_s = 0.0;
+};
+
 class ArcosRobot final : public Robot {
  public:
   struct OpenResult {
@@ -84,6 +96,7 @@ class ArcosRobot final : public Robot {
   arcos::ArcosState sessionState() const;
   std::optional<arcos::RobotIdentity> identity() const;  // from the last SYNC2 reply
   std::uint64_t droppedSamples() const;
+  ArcosTelemetryRates telemetryRates() const;
   const ArcosParams& params() const { return params_; }
 
   struct Impl;

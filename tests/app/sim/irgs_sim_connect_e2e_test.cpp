@@ -1,6 +1,7 @@
 // End to end: `irgs-sim --connect serial://PATH` against the irgs-robot executable on a pty at
-// 115200 baud. irgs-robot makes a symlink PATH to its pty (--link); irgs-sim drives a short
-// script on it and writes the usual outputs. Every wait has a deadline; children are always
+// 115200 baud, over MAVLink and over ARCOS (?protocol=arcos, irgs-robot --protocol arcos as a
+// P3-DX). irgs-robot makes a symlink PATH to its pty (--link); irgs-sim drives a short script on
+// it and writes the usual outputs. Every wait has a deadline; children are always
 // reaped.
 
 #include <fcntl.h>
@@ -23,100 +24,12 @@
 #include <thread>
 #include <vector>
 
+#include "tests/app/sim/child_process.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// A child process with stdout and stderr on one pipe; killed and reaped on destruction.
-class Child {
- public:
-  explicit Child(const std::vector<std::string>& args) {
-    int out[2];
-    if (::pipe(out) != 0)
-      return;
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(out[1], STDOUT_FILENO);
-      ::dup2(out[1], STDERR_FILENO);
-      ::close(out[0]);
-      ::close(out[1]);
-      std::vector<char*> argv;
-      for (const auto& a : args)
-        argv.push_back(const_cast<char*>(a.c_str()));
-      argv.push_back(nullptr);
-      ::execv(argv[0], argv.data());
-      ::_exit(127);
-    }
-    ::close(out[1]);
-    out_ = out[0];
-    ::fcntl(out_, F_SETFL, ::fcntl(out_, F_GETFL) | O_NONBLOCK);
-  }
-  ~Child() {
-    if (pid_ > 0 && !status_) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    if (out_ >= 0)
-      ::close(out_);
-  }
-  bool started() const { return pid_ > 0; }
-
-  // Reads what is available (waiting up to `timeout_s` for something).
-  void pump(double timeout_s) {
-    pollfd p{out_, POLLIN, 0};
-    if (::poll(&p, 1, static_cast<int>(timeout_s * 1000)) <= 0)
-      return;
-    char buf[4096];
-    for (;;) {
-      const ssize_t n = ::read(out_, buf, sizeof buf);
-      if (n <= 0)
-        break;
-      output_.append(buf, static_cast<std::size_t>(n));
-    }
-  }
-  // Waits until the output contains `text`.
-  bool waitOutput(const std::string& text, double timeout_s) {
-    const auto t0 = Clock::now();
-    while (output_.find(text) == std::string::npos) {
-      if (since(t0) > timeout_s || exited())
-        return output_.find(text) != std::string::npos;
-      pump(0.05);
-    }
-    return true;
-  }
-  bool exited() {
-    if (status_)
-      return true;
-    int status = 0;
-    if (::waitpid(pid_, &status, WNOHANG) == pid_)
-      status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    return status_.has_value();
-  }
-  // Waits up to `timeout_s` for the exit (collecting output); the exit status or -1.
-  int wait(double timeout_s) {
-    const auto t0 = Clock::now();
-    while (!exited()) {
-      if (since(t0) > timeout_s)
-        return -1;
-      pump(0.05);
-    }
-    pump(0.0);
-    return *status_;
-  }
-  void signal(int sig) { ::kill(pid_, sig); }
-  const std::string& output() const { return output_; }
-
- private:
-  pid_t pid_ = -1;
-  int out_ = -1;
-  std::string output_;
-  std::optional<int> status_;
-};
+using irgs::test::Child;
 
 std::string readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -219,6 +132,34 @@ TEST_F(IrgsSimConnect, DrivesTheLinkedRobotAndWritesTheSameOutputs) {
   EXPECT_NE(link.find("\"stop_acknowledged\": true"), std::string::npos) << link;
   EXPECT_NE(link.find("not available from a linked robot"), std::string::npos);
   EXPECT_NE(sim.output().find("link up"), std::string::npos) << sim.output();
+  EXPECT_EQ(robot->wait(0.0), -1) << "irgs-robot died: " << robot->output();
+  robot->signal(SIGTERM);
+  EXPECT_EQ(robot->wait(10.0), 0);
+}
+
+TEST_F(IrgsSimConnect, DrivesAPioneerOverArcosWhenTheUrlSaysSo) {
+  const std::string pioneer = std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_p3dx.json";
+  auto robot = std::make_unique<Child>(
+      std::vector<std::string>{IRGS_ROBOT_EXE, "--protocol", "arcos", "--robot", pioneer, "--seed",
+                               "4", "--link", link_.string()});
+  ASSERT_TRUE(robot->started());
+  ASSERT_TRUE(robot->waitOutput("/dev/pts/", 20.0)) << robot->output();
+  const fs::path script = work_ / "drive.txt";
+  std::ofstream(script) << "0 drive 0.25 0\n1.5 drive 0.15 40\n3 stop\n";
+  const fs::path out = work_ / "out";
+  Child sim({IRGS_SIM_EXE, "--connect", url() + "&protocol=arcos", "--robot", pioneer, "--script",
+             script.string(), "--out", out.string(), "--connect-timeout", "10"});
+  ASSERT_TRUE(sim.started());
+  ASSERT_EQ(sim.wait(60.0), 0) << sim.output();
+  EXPECT_GT(occupiedCells(out / "grid.pgm"), 0) << "the sonar grid has no occupied cells";
+  std::size_t rows = 0;
+  EXPECT_GT(pathLength(out / "trajectory.csv", rows), 0.3);
+  EXPECT_GE(rows, 20u);
+  const std::string link = readFile(out / "link.json");
+  EXPECT_NE(link.find("\"protocol\": \"arcos\""), std::string::npos) << link;
+  EXPECT_NE(link.find("irgs-robot"), std::string::npos) << "no robot name from SYNC2: " << link;
+  // ARCOS acknowledges nothing: the stop is confirmed by a SIP with the wheels at rest.
+  EXPECT_NE(link.find("\"stop_acknowledged\": true"), std::string::npos) << link;
   EXPECT_EQ(robot->wait(0.0), -1) << "irgs-robot died: " << robot->output();
   robot->signal(SIGTERM);
   EXPECT_EQ(robot->wait(10.0), 0);

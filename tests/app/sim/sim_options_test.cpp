@@ -87,9 +87,11 @@ TEST(SimOptions, BehaviourRefusesWhatItCannotRun) {
   EXPECT_NE(error({"--map", "m", "--out", "o", "--behaviour", "mapbuild", "--script", "s"})
                 .find("--script"),
             std::string::npos);
-  EXPECT_NE(
-      error({"--connect", "tcp://h:1", "--out", "o", "--behaviour", "mapbuild"}).find("--connect"),
-      std::string::npos);
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--compare", "a/grid.yaml"}).find("mapbuild"),
+            std::string::npos);
+  EXPECT_NE(error({"--map", "m", "--out", "o", "--behaviour", "mapbuild", "--compare", ""})
+                .find("--compare"),
+            std::string::npos);
 }
 
 }  // namespace
@@ -108,11 +110,22 @@ TEST(SimOptions, ConnectTakesAUrlAndMakesTheMapOptional) {
   EXPECT_DOUBLE_EQ(parseSimOptions({"--map", "m", "--out", "o"}).options->connect_timeout_s, 10.0);
 }
 
+TEST(SimOptions, ConnectRunsABehaviourFromADeclaredStartAndComparesWithASavedMap) {
+  const auto r = parseSimOptions({"--connect", "tcp://localhost:8101?protocol=arcos", "--out", "o",
+                                  "--map", "m.json", "--start", "1,2,90", "--behaviour", "mapbuild",
+                                  "--compare", "inprocess/grid.yaml"});
+  ASSERT_TRUE(r.options) << r.error;
+  EXPECT_EQ(r.options->behaviour, "mapbuild");
+  ASSERT_TRUE(r.options->start);
+  EXPECT_DOUBLE_EQ(r.options->start->y, 2.0);
+  EXPECT_EQ(r.options->compare, "inprocess/grid.yaml");
+  const auto goal = parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--map", "m.json",
+                                     "--behaviour", "goal", "--goal", "1,1"});
+  ASSERT_TRUE(goal.options) << goal.error;
+}
+
 TEST(SimOptions, ConnectRefusesWhatOnlyTheSimulatorCanDo) {
   EXPECT_NE(parseSimOptions({"--connect", "/dev/ttyUSB0", "--out", "o"}).error.find("URL"),
-            std::string::npos);
-  EXPECT_NE(parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--start", "1,2,0"})
-                .error.find("--start"),
             std::string::npos);
   EXPECT_NE(
       parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--ideal"}).error.find("--ideal"),
