@@ -88,6 +88,18 @@ bool TelemetryAssembler::advanceTo(std::int64_t time_ms, bool is_pose) {
   return true;  // same time stamp, or an older reading that joins this sample
 }
 
+bool TelemetryAssembler::poseAlreadyComplete() {
+  // The firmware may send one pose in several messages (ODOMETRY and LOCAL_POSITION_NED +
+  // ATTITUDE carry the same pose at float precision, differently rounded). The first complete
+  // pose of a time step is the sample's: which one that is depends only on the byte stream,
+  // never on when the hold timer released the sample, so a replay of the recorded bytes
+  // reproduces the live samples exactly.
+  if (!(current_.has_xy && current_.has_theta))
+    return false;
+  ++counters_.duplicate_poses;
+  return true;
+}
+
 void TelemetryAssembler::poseUpdated(double now_s) {
   if (!(current_.has_xy && current_.has_theta))
     return;
@@ -135,7 +147,7 @@ void TelemetryAssembler::onLocalPosition(const mav::Frame& frame, double now_s) 
   const auto lp = frame.as<mav::LocalPositionNed>();
   if (!lp || !finite({lp->x, lp->y, lp->vx, lp->vy}))
     return;
-  if (!advanceTo(lp->time_boot_ms, true))
+  if (!advanceTo(lp->time_boot_ms, true) || poseAlreadyComplete())
     return;
   // NED (world x as north) -> ours: the rotation by pi about x flips y.
   current_.sample.odometry_pose.x = lp->x;
@@ -154,7 +166,8 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
       break;
     case mav::Attitude::kId: {
       const auto att = frame.as<mav::Attitude>();
-      if (!att || !finite({att->yaw, att->yawspeed}) || !advanceTo(att->time_boot_ms, true))
+      if (!att || !finite({att->yaw, att->yawspeed}) || !advanceTo(att->time_boot_ms, true) ||
+          poseAlreadyComplete())
         return;
       current_.sample.odometry_pose.theta = wrapAngle(-static_cast<double>(att->yaw));
       current_.sample.measured_velocity.angular_radps = -static_cast<double>(att->yawspeed);
@@ -178,7 +191,7 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
         ++counters_.unsupported_frames;
         return;
       }
-      if (!advanceTo(usToMs(od->time_usec), true))
+      if (!advanceTo(usToMs(od->time_usec), true) || poseAlreadyComplete())
         return;
       const double theta = wrapAngle(flip * quaternionYaw(od->q));
       current_.sample.odometry_pose = Pose2{od->x, flip * od->y, theta};
@@ -200,7 +213,7 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
     case mav::IrgsPose2d::kId: {
       const auto p = frame.as<mav::IrgsPose2d>();
       if (!p || !finite({p->x, p->y, p->theta, p->v, p->omega}) ||
-          !advanceTo(p->time_boot_ms, true))
+          !advanceTo(p->time_boot_ms, true) || poseAlreadyComplete())
         return;
       current_.sample.odometry_pose = Pose2{p->x, p->y, wrapAngle(p->theta)};
       current_.sample.measured_velocity = {p->v, p->omega};

@@ -46,6 +46,7 @@ struct TelemetryAssemblerCounters {
   std::uint64_t sonar_readings = 0;      // taken into samples
   std::uint64_t ignored_readings = 0;    // unknown sensor index, zero range, dropped without pose
   std::uint64_t stale_poses = 0;         // pose messages older than the sample being assembled
+  std::uint64_t duplicate_poses = 0;     // further pose messages of a step that had its pose
   std::uint64_t unsupported_frames = 0;  // ODOMETRY in a frame we cannot convert
   std::uint64_t restarts = 0;            // robot clock jumped back (reboot)
 };
@@ -89,6 +90,9 @@ class TelemetryAssembler {
   // Moves the assembly to `time_ms` (releasing the current sample when it has a pose and the
   // time is newer). Returns false when the message is stale and must be ignored (poses only).
   bool advanceTo(std::int64_t time_ms, bool is_pose);
+  // True (and counted) when this step already has a complete pose: later pose messages of
+  // the same step are ignored.
+  bool poseAlreadyComplete();
   void poseUpdated(double now_s);
   void release();
   void addReading(const SonarReading& reading);

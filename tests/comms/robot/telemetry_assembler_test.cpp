@@ -246,6 +246,32 @@ TEST(TelemetryAssembler, ReleaseOnPoseCarriesLateReadingsToTheNextSample) {
   EXPECT_EQ(samples[0].sonar[0].sensor, 1);
 }
 
+TEST(TelemetryAssembler, TheFirstCompletePoseOfAStepWinsWhateverTheHoldTimerDid) {
+  // The same step's pose arrives twice, rounded differently (as ODOMETRY's quaternion and
+  // ATTITUDE's yaw do). Whether the hold timer released the sample between the two copies
+  // (a loaded live run) or not (its replay) must not change the sample.
+  const auto feed = [](bool hold_fires_between) {
+    TelemetryAssembler assembler(testing::thesisRobot(), {.hold_s = 0.1});
+    assembler.onFrame(lpn(100, 1.0f, 0.0f), 10.0);
+    assembler.onFrame(att(100, 0.5f), 10.0);
+    if (hold_fires_between)
+      assembler.tick(10.2);
+    assembler.onFrame(lpn(100, 1.0000001f, 0.0f), 10.21);
+    assembler.onFrame(att(100, 0.5000001f), 10.21);
+    assembler.onFrame(lpn(150, 1.1f, 0.0f), 10.25);
+    auto samples = assembler.takeReady();
+    EXPECT_EQ(samples.size(), 1u);
+    EXPECT_EQ(assembler.counters().stale_poses + assembler.counters().duplicate_poses, 2u);
+    return samples.empty() ? Pose2{} : samples[0].odometry_pose;
+  };
+  const Pose2 loaded = feed(true);
+  const Pose2 replayed = feed(false);
+  EXPECT_EQ(loaded.x, static_cast<double>(1.0f));
+  EXPECT_EQ(replayed.x, loaded.x);
+  EXPECT_EQ(replayed.y, loaded.y);
+  EXPECT_EQ(replayed.theta, loaded.theta);
+}
+
 TEST(TelemetryAssembler, UnknownSensorsAndZeroRangesAreCountedNotDelivered) {
   TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
   assembler.onFrame(ds(100, 200, 100), 0.0);  // the thesis robot has 8 sonars
