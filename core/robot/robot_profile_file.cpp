@@ -136,9 +136,9 @@ bool nonNegative(double v) {
   return v >= 0.0;
 }
 
-const std::set<std::string> kTopKeys = {"format_version", "name",     "description",  "notes",
-                                        "drive",          "limits",   "body_outline", "sonars",
-                                        "bumpers",        "proximity"};
+const std::set<std::string> kTopKeys = {"format_version", "name",      "description",  "notes",
+                                        "drive",          "limits",    "body_outline", "sonars",
+                                        "bumpers",        "proximity", "calibration"};
 
 // Signed area (shoelace), > 0 for counter-clockwise.
 double signedArea(const std::vector<Vec2>& poly) {
@@ -484,6 +484,10 @@ RobotProfileResult parseRobotProfileJson(std::string_view text, const std::strin
   r.keepUnknown(root, "", kTopKeys, profile.extra);
   if (const auto it = root.find("notes"); it != root.end())
     profile.extra["notes"] = *it;  // documented free text: kept without a warning
+  // Documented calibration results (core/calibration/profile_calibration.hpp): kept as is,
+  // written back by robotProfileToJson through `extra`, read by the calibration code.
+  if (const auto it = root.find("calibration"); it != root.end())
+    profile.extra["calibration"] = *it;
   crossChecks(r, profile);
   if (!hasErrors(result.diagnostics))
     result.profile = std::move(profile);

@@ -19,7 +19,10 @@
 //     "sonars":    [{ "name", "x_m", "y_m", "heading_deg", "beam_width_deg" (0, 180],
 //                     "min_range_m", "max_range_m", "rate_hz" }],
 //     "bumpers":   [{ "name", "x_m", "y_m", "normal_deg", "half_width_m" }],   at most 32
-//     "proximity": [{ "name", "x_m", "y_m", "heading_deg", "max_range_m", "rate_hz" }]
+//     "proximity": [{ "name", "x_m", "y_m", "heading_deg", "max_range_m", "rate_hz" }],
+//     "calibration": { "odometry": {...}, "gyro": {...} }
+//                  optional, written by the calibration wizards
+//                  (core/calibration/profile_calibration.hpp)
 //   }
 //
 // Sensor x_m, y_m and heading/normal are required; the other sensor fields default to the
