@@ -84,6 +84,9 @@ struct Link::Impl : std::enable_shared_from_this<Link::Impl> {
     if (stopped)
       return;
     const double t = now();
+    if (config.tap)
+      guarded(
+          [&] { config.tap(TapDirection::kReceived, std::chrono::steady_clock::now(), bytes); });
     frames.clear();
     const auto counters = decoder.feed(bytes, frames);
     session.onReceived(bytes.size(), counters, t);
@@ -149,8 +152,13 @@ struct Link::Impl : std::enable_shared_from_this<Link::Impl> {
   }
 
   void transmit(const mav::EncodedFrame& frame, double t) {
-    if (transport && transport->send(frame.view()))
+    if (transport && transport->send(frame.view())) {
       session.onSent(frame.size, t);
+      if (config.tap)
+        guarded([&] {
+          config.tap(TapDirection::kSent, std::chrono::steady_clock::now(), frame.view());
+        });
+    }
   }
 
   std::uint64_t signingTime() const {
@@ -235,7 +243,8 @@ LinkResult Link::create(IoThread& io, const LinkUrl& url, LinkConfig config,
   tc.on_state = [raw](TransportState state, const std::string& message) {
     raw->onTransportState(state, message);
   };
-  auto made = makeTransport(url, io, std::move(tc));
+  auto made = impl->config.make_transport ? impl->config.make_transport(io, std::move(tc))
+                                          : makeTransport(url, io, std::move(tc));
   if (!made.transport)
     return {nullptr, made.error};
   impl->transport = std::move(made.transport);

@@ -16,6 +16,7 @@
 //    it returns no callback runs any more. The IoThread must outlive the link.
 
 #include "comms/link/command_manager.hpp"
+#include "comms/link/frame_tap.hpp"
 #include "comms/link/link_session.hpp"
 #include "comms/link/link_types.hpp"
 #include "comms/link/link_url.hpp"
@@ -23,6 +24,7 @@
 #include "comms/mavlink/message_info.hpp"
 #include "comms/mavlink/signing.hpp"
 #include "comms/transport/io_thread.hpp"
+#include "comms/transport/transport_factory.hpp"
 
 #include <array>
 #include <cstdint>
@@ -43,6 +45,11 @@ struct LinkConfig {
   std::optional<mavlink::SigningKey> signing_key{};
   std::uint8_t signing_link_id = 0;
   bool require_signed = false;  // with a key: drop unsigned frames
+  // Sees every received chunk and every sent frame (session recording); empty = none.
+  FrameTap tap{};
+  // Builds the transport instead of makeTransport(url) (replay from a recording, in-memory
+  // tests); the URL then only names the link. Empty = makeTransport.
+  std::function<TransportResult(IoThread& io, TransportCallbacks callbacks)> make_transport{};
 };
 
 struct LinkCallbacks {
