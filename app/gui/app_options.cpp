@@ -103,10 +103,36 @@ AppOptionsResult parseAppOptions(const QStringList& arguments) {
       QStringLiteral("Start localization with this estimator: ekf (stereo-sonar EKF), dr (dead "
                      "reckoning) or encoder-gyro (the Localization menu does the same)."),
       QStringLiteral("ESTIMATOR"));
-  parser.addOptions({help_option, version_option, map_option, robot_option, seed_option,
-                     settings_option, script_option, screenshot_option, screenshot_after_option,
-                     quit_after_option, window_size_option, speed_option, connect_option,
-                     control_option, status_option, localize_option});
+  const QCommandLineOption record_option(
+      QStringLiteral("record"),
+      QStringLiteral("Record the session (link frames, events, commands, simulator truth) into "
+                     "this new file. Default: a new file under the recordings folder."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption no_record_option(QStringLiteral("no-record"),
+                                            QStringLiteral("Do not record this session."));
+  const QCommandLineOption replay_option(
+      QStringLiteral("replay"),
+      QStringLiteral("Replay this session recording as the robot link (File > Open Recording)."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption replay_speed_option(
+      QStringLiteral("replay-speed"),
+      QStringLiteral("Replay speed factor, 0.25 to 16 (default 1)."), QStringLiteral("FACTOR"));
+  const QCommandLineOption trajectory_out_option(
+      QStringLiteral("trajectory-out"),
+      QStringLiteral("At exit, write every pose shown (t, x, y, theta) to this CSV file."),
+      QStringLiteral("FILE"));
+  const QCommandLineOption grid_out_option(
+      QStringLiteral("grid-out"),
+      QStringLiteral("At exit, write the occupancy grid's observed cells (log-odds) to this CSV."),
+      QStringLiteral("FILE"));
+  parser.addOptions({help_option,       version_option,      map_option,
+                     robot_option,      seed_option,         settings_option,
+                     script_option,     screenshot_option,   screenshot_after_option,
+                     quit_after_option, window_size_option,  speed_option,
+                     connect_option,    control_option,      status_option,
+                     localize_option,   record_option,       no_record_option,
+                     replay_option,     replay_speed_option, trajectory_out_option,
+                     grid_out_option});
 
   AppOptionsResult result;
   const auto fail = [&result](const QString& message) {
@@ -194,6 +220,26 @@ AppOptionsResult parseAppOptions(const QStringList& arguments) {
     if (!options.status_interval_s || *options.status_interval_s < 0.01)
       return fail(QStringLiteral("--status-interval expects seconds >= 0.01, got '%1'")
                       .arg(parser.value(status_option)));
+  }
+  options.record_file = parser.value(record_option);
+  options.no_record = parser.isSet(no_record_option);
+  options.replay_file = parser.value(replay_option);
+  options.trajectory_out_file = parser.value(trajectory_out_option);
+  options.grid_out_file = parser.value(grid_out_option);
+  for (const auto* option :
+       {&record_option, &replay_option, &trajectory_out_option, &grid_out_option}) {
+    if (parser.isSet(*option) && parser.value(*option).trimmed().isEmpty())
+      return fail(QStringLiteral("--%1 needs a file name").arg(option->names().constLast()));
+  }
+  if (options.no_record && parser.isSet(record_option))
+    return fail(QStringLiteral("--record and --no-record contradict each other"));
+  if (!options.replay_file.isEmpty() && !options.connect_url.isEmpty())
+    return fail(QStringLiteral("--replay and --connect cannot be used together"));
+  if (parser.isSet(replay_speed_option)) {
+    options.replay_speed = parseNonNegative(parser.value(replay_speed_option));
+    if (!options.replay_speed || *options.replay_speed < 0.25 || *options.replay_speed > 16.0)
+      return fail(QStringLiteral("--replay-speed expects a factor in [0.25, 16], got '%1'")
+                      .arg(parser.value(replay_speed_option)));
   }
   result.options = options;
   return result;

@@ -25,6 +25,14 @@ struct AppOptions {
   bool control_stdin = false;          // read commands from stdin (stdin_control.hpp)
   std::optional<double> status_interval_s;  // print status lines on stdout this often
   QString localize;  // start this estimator: ekf, dr or encoder-gyro (empty: off)
+  // Session recording (app/recording): a new file per session under the recordings folder
+  // unless --no-record; --record names the file.
+  QString record_file;
+  bool no_record = false;
+  QString replay_file;                 // replay this recording as the robot link at start-up
+  std::optional<double> replay_speed;  // x0.25 .. x16 (default 1)
+  QString trajectory_out_file;         // at exit: every shown pose (t, x, y, theta) as CSV
+  QString grid_out_file;               // at exit: the occupancy grid's log-odds as CSV
 };
 
 struct AppOptionsResult {

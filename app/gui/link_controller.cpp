@@ -39,7 +39,7 @@ QString LinkController::connectTo(const QString& url) {
   if (!linked())
     simulator_factory_ = session_.robotFactory();
   const std::string text = parsed.url->toString();
-  RobotFactory factory = [io = io_, link_url = *parsed.url, text](
+  RobotFactory factory = [io = io_, link_url = *parsed.url, text, tap = frame_tap_](
                              const WorldMap&,
                              const RobotProfile& profile) -> std::unique_ptr<Robot> {
     if (comms::isArcosUrl(link_url)) {
@@ -50,7 +50,10 @@ QString LinkController::connectTo(const QString& url) {
         throw std::runtime_error(arcos.error);
       return std::unique_ptr<Robot>(std::move(arcos.robot));
     }
-    comms::LinkedRobot::OpenResult opened = comms::LinkedRobot::open(*io, link_url, profile);
+    comms::LinkedRobotConfig config;
+    config.link.tap = tap;
+    comms::LinkedRobot::OpenResult opened =
+        comms::LinkedRobot::open(*io, link_url, profile, std::move(config));
     if (!opened.robot)
       throw std::runtime_error(opened.error);
     return std::make_unique<LinkedRobotHandle>(io, std::move(opened.robot), text);
@@ -96,6 +99,12 @@ void LinkController::poll() {
   if ((linked != nullptr) != was_linked_) {
     was_linked_ = linked != nullptr;
     emit linkedChanged(was_linked_);
+  }
+  // An ARCOS robot has no MAVLink health panel, but its events (the handshake's robot name and
+  // model, link loss, stalls) belong in the console all the same.
+  if (auto* arcos = dynamic_cast<comms::ArcosRobot*>(session_.robot())) {
+    for (const comms::LinkEvent& event : arcos->takeEvents())
+      session_.report(levelOfSeverity(event.severity), formatLinkEvent(event));
   }
   if (linked == nullptr)
     return;

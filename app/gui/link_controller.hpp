@@ -12,6 +12,7 @@
 
 #include "app/gui/linked_robot_handle.hpp"
 #include "app/gui/session_controller.hpp"
+#include "comms/link/frame_tap.hpp"
 #include "widgets/link/connection_dialog.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
@@ -36,6 +37,9 @@ class LinkController : public QObject {
   QString connectTo(const QString& url);
   // Back to the robot factory the session had before connecting (the simulator).
   void disconnectLink();
+  // Links opened by later connectTo() calls report their bytes to `tap` (session recording);
+  // an empty function: none.
+  void setFrameTap(comms::FrameTap tap) { frame_tap_ = std::move(tap); }
 
   bool linked() const { return handle() != nullptr; }
   QString url() const;
@@ -65,6 +69,7 @@ class LinkController : public QObject {
   SessionController& session_;
   std::shared_ptr<comms::IoThread> io_;  // created on the first connection
   RobotFactory simulator_factory_;
+  comms::FrameTap frame_tap_;
   QTimer poll_timer_;
   bool was_linked_ = false;
 };

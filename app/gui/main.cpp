@@ -3,7 +3,8 @@
 //   irgs [--map FILE] [--robot FILE] [--seed N] [--settings FILE] [--drive-script FILE]
 //        [--screenshot PNG] [--screenshot-after SIM_SECONDS] [--quit-after S]
 //        [--window-size WxH] [--speed FACTOR] [--connect URL] [--control-stdin]
-//        [--status-interval S]
+//        [--status-interval S] [--record FILE | --no-record] [--replay FILE]
+//        [--replay-speed X] [--trajectory-out CSV] [--grid-out CSV]
 //
 // Exit codes: 0 normal; 1 a file could not be read or written; 2 bad arguments;
 // 3 --quit-after reached before the requested screenshot.
@@ -25,6 +26,7 @@
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/map_file_actions.hpp"
+#include "app/gui/recording_ui.hpp"
 #include "app/gui/session_controller.hpp"
 #include "app/gui/startup.hpp"
 #include "app/gui/stdin_control.hpp"
@@ -190,6 +192,33 @@ int main(int argc, char** argv) {
   if (options.sim_speed)
     session.setSpeedFactor(*options.sim_speed);
 
+  // Session recording (app/recording) before any link opens, so it sees every byte; a replay
+  // is not recorded again.
+  auto* recording = new RecordingUi(session, window.linkUi().controller(), window);
+  recording->setCollectTrajectory(!options.trajectory_out_file.isEmpty());
+  if (options.replay_file.isEmpty() && !options.no_record) {
+    const QString path = options.record_file.isEmpty()
+                             ? RecordingUi::newRecordingPath(
+                                   RecordingUi::defaultRecordingsDir(options.settings_file))
+                             : options.record_file;
+    const QString problem = recording->startRecording(path);
+    if (!problem.isEmpty()) {
+      if (!options.record_file.isEmpty()) {
+        err() << "irgs: error: --record " << path << ": " << problem << '\n';
+        return kExitFileError;
+      }
+      session.report(EventLevel::kWarning, QStringLiteral("Not recording: %1").arg(problem));
+    }
+  }
+  if (!options.replay_file.isEmpty()) {
+    const QString problem =
+        recording->openReplay(options.replay_file, options.replay_speed.value_or(1.0));
+    if (!problem.isEmpty()) {
+      err() << "irgs: error: --replay " << options.replay_file << ": " << problem << '\n';
+      return kExitFileError;
+    }
+  }
+
   if (!options.connect_url.isEmpty()) {
     const QString problem = window.linkUi().connectTo(options.connect_url);
     if (!problem.isEmpty()) {
@@ -232,5 +261,19 @@ int main(int argc, char** argv) {
   if (player)
     player->start();
   automation.start();
-  return QApplication::exec();
+  const int code = QApplication::exec();
+  // Close the recording now: the link keeps receiving until the window goes, and a recording
+  // that ends where the session stopped integrating replays to the same map.
+  recording->stopRecording();
+  std::string dump_error;
+  if (!options.trajectory_out_file.isEmpty())
+    dump_error = irgs::recording::writeTrajectoryCsv(recording->trajectory(),
+                                                     options.trajectory_out_file.toStdString());
+  if (dump_error.empty() && !options.grid_out_file.isEmpty())
+    dump_error = irgs::recording::writeGridCsv(session.grid(), options.grid_out_file.toStdString());
+  if (!dump_error.empty()) {
+    err() << "irgs: error: " << QString::fromStdString(dump_error) << '\n';
+    return code == 0 ? kExitFileError : code;
+  }
+  return code;
 }

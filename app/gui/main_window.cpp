@@ -16,6 +16,7 @@
 #include <array>
 
 #include "app/gui/app_settings.hpp"
+#include "app/gui/editor_controller.hpp"
 #include "app/gui/link_ui.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
@@ -94,6 +95,9 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   buildViewMenu();
   buildSimulationMenu();
   localization_ = new LocalizationController(session_, *canvas_, *this);
+  // The map editor: the "Edit" tab, the tool layer on the canvas, autosave and recovery.
+  editor_ = new EditorController(session_, *map_files_, *canvas_, *control_tabs_, *this);
+  QTimer::singleShot(0, editor_, [this] { editor_->offerRecovery(); });
   buildHelpMenu();
   status_ = new SessionStatusBar(*statusBar(), this);
   // The link-health panel sits under the command panel (shown while a robot is linked).
@@ -398,6 +402,11 @@ void MainWindow::refreshStatus() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+  if (!editor_->confirmDiscard()) {  // unsaved map edits: the user chose Cancel
+    event->ignore();
+    return;
+  }
+  editor_->shutdown();
   session_.stopRobot();
   saveSettings();
   event->accept();

@@ -22,6 +22,7 @@ class PlanningPanel;
 
 namespace irgs::gui {
 
+class EditorController;
 class LinkUi;
 class LocalizationController;
 class MapFileActions;
@@ -53,6 +54,8 @@ class MainWindow : public QMainWindow {
   LinkUi& linkUi() const { return *link_ui_; }
   // The "Localization" menu and dock: estimator poses on the map, error plots.
   LocalizationController& localization() const { return *localization_; }
+  // The map editor ("Edit" tab).
+  EditorController& editor() const { return *editor_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -91,6 +94,7 @@ class MainWindow : public QMainWindow {
   MapFileActions* map_files_ = nullptr;
   LinkUi* link_ui_ = nullptr;
   LocalizationController* localization_ = nullptr;
+  EditorController* editor_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

@@ -70,6 +70,8 @@ QStringList MapFileActions::formatDiagnostics(const std::vector<Diagnostic>& dia
 }
 
 bool MapFileActions::openMap(const QString& path) {
+  if (discard_guard_ && !discard_guard_())
+    return false;
   MapLoadResult result = loadAnyMap(toPath(path));
   const QStringList lines = formatDiagnostics(result.diagnostics);
   if (!result.map || hasErrors(result.diagnostics)) {
@@ -167,6 +169,7 @@ bool MapFileActions::saveTo(const QString& path) {
     return false;
   }
   session_.report(EventLevel::kInfo, tr("Map saved to %1").arg(path));
+  emit saved(QFileInfo(path).absoluteFilePath());
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <QObject>
 #include <QString>
 #include <QStringList>
+#include <functional>
 #include <vector>
 
 #include "core/io/diagnostic.hpp"
@@ -39,11 +40,16 @@ class MapFileActions : public QObject {
   const QString& currentFile() const { return current_file_; }
   QStringList recentFiles() const;
 
+  // Asked before another map replaces the current one (open, open recent): returning false
+  // cancels the open (the map editor asks about unsaved edits here). None by default.
+  void setDiscardGuard(std::function<bool()> guard) { discard_guard_ = std::move(guard); }
+
   // "file:line:col: error: field: message" lines, one per diagnostic.
   static QStringList formatDiagnostics(const std::vector<Diagnostic>& diagnostics);
 
  signals:
   void currentFileChanged(const QString& path);
+  void saved(const QString& path);  // the session's map was written to path
 
  public slots:
   void openWithDialog();
@@ -60,6 +66,7 @@ class MapFileActions : public QObject {
   QSettings& settings_;
   QWidget& dialog_parent_;
   QString current_file_;
+  std::function<bool()> discard_guard_;
   QAction* open_ = nullptr;
   QAction* save_ = nullptr;
   QAction* save_as_ = nullptr;

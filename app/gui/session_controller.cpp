@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "app/gui/event_format.hpp"
+#include "core/sim/simulated_robot.hpp"
 
 namespace irgs::gui {
 namespace {
@@ -56,6 +57,13 @@ void SessionController::loadWorld(WorldMap map, const QString& source) {
              .arg(map_.walls.size())
              .arg(map_.obstacles.size())
              .arg(formatPose(map_.start)));
+}
+
+void SessionController::updateWorld(WorldMap map) {
+  if (auto* simulated = dynamic_cast<SimulatedRobot*>(robot_.get()))
+    simulated->setMap(map);
+  map_ = std::move(map);
+  emit worldEdited();
 }
 
 void SessionController::setRobotFactory(RobotFactory factory) {

@@ -59,6 +59,10 @@ class SessionController : public QObject {
   // Throws what the factory throws (a map the simulator cannot use); the session is then
   // unchanged.
   void loadWorld(WorldMap map, const QString& source);
+  // Replaces the map in place (the map editor): the robot, its pose, the grid and the source
+  // stay; a simulated robot's world is swapped (SimulatedRobot::setMap) so the simulator runs on
+  // what is being edited. A linked robot does not use the map. Emits worldEdited().
+  void updateWorld(WorldMap map);
   // Replaces the robot factory and, with a robot from it, the robot (simulator <-> linked
   // robot). Throws what the factory throws (std::invalid_argument for an empty factory); the
   // session is then unchanged.
@@ -113,6 +117,7 @@ class SessionController : public QObject {
 
  signals:
   void worldLoaded();
+  void worldEdited();    // updateWorld(): the same world, edited
   void robotReplaced();  // a new robot at the start pose (map loaded or reset): trails restart
   // The newest integrated sample, once per tick; at fast speeds also intermediate samples
   // (every few centimetres of travel) so a view's trail follows the path.

@@ -2,15 +2,25 @@
 
 #include <unistd.h>
 
+#include <QDir>
+#include <QFileInfo>
+#include <QPixmap>
 #include <QSocketNotifier>
 #include <QTimer>
+#include <QWidget>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 
+#include "app/gui/behaviour_controller.hpp"
 #include "app/gui/link_controller.hpp"
+#include "app/gui/link_format.hpp"
 #include "app/gui/link_ui.hpp"
+#include "app/gui/main_window.hpp"
+#include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
+#include "comms/robot/arcos_robot.hpp"
+#include "core/behaviour/map_building.hpp"
 #include "core/geometry/types.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
@@ -25,6 +35,44 @@ std::optional<double> number(const QString& text) {
   return ok && std::isfinite(value) ? std::optional<double>(value) : std::nullopt;
 }
 
+// One status value: no spaces ("follow wall" -> "follow_wall").
+QString token(std::string_view text) {
+  QString value = QString::fromUtf8(text.data(), static_cast<qsizetype>(text.size()));
+  value.replace(QLatin1Char(' '), QLatin1Char('_'));
+  return value.isEmpty() ? QStringLiteral("-") : value;
+}
+
+// What the status line says about the link, whichever protocol the session's robot speaks.
+struct LinkSummary {
+  QString state = QStringLiteral("none");
+  TelemetryRates rates;
+  std::uint32_t link_losses = 0;
+  std::uint32_t reconnects = 0;
+};
+
+LinkSummary summarise(const LinkController& link, SessionController& session) {
+  LinkSummary summary;
+  if (link.linked()) {
+    const widgets::LinkHealth health = link.health();
+    summary.state = widgets::LinkHealthPanel::stateText(health.state);
+    summary.rates = link.rates();
+    summary.link_losses = health.link_losses;
+    summary.reconnects = health.reconnect_attempts;
+  } else if (const auto* arcos = dynamic_cast<const comms::ArcosRobot*>(session.robot())) {
+    const comms::LinkStats stats = arcos->linkStats();
+    summary.state = widgets::LinkHealthPanel::stateText(toHealthState(stats.state));
+    const comms::ArcosTelemetryRates rates = arcos->telemetryRates();
+    summary.rates.samples = rates.samples;
+    summary.rates.sonar_readings = rates.sonar_readings;
+    summary.rates.odometry_hz = rates.sample_hz;
+    summary.rates.sonar_hz = rates.sonar_hz;
+    summary.rates.sonar_readings_per_s = rates.sonar_readings_per_s;
+    summary.link_losses = stats.link_losses;
+    summary.reconnects = stats.reconnect_attempts;
+  }
+  return summary;
+}
+
 }  // namespace
 
 StdinControl::StdinControl(SessionController& session, LinkUi& link, QObject* parent)
@@ -33,6 +81,11 @@ StdinControl::StdinControl(SessionController& session, LinkUi& link, QObject* pa
 }
 
 void StdinControl::start(bool read_commands, std::optional<double> status_interval_s) {
+  if ((read_commands || status_interval_s) && !echo_console_) {
+    echo_console_ = true;
+    connect(&session_, &SessionController::consoleEvent, this,
+            [this](EventLevel level, double, const QString& text) { onConsole(level, text); });
+  }
   if (read_commands && notifier_ == nullptr) {
     notifier_ = new QSocketNotifier(STDIN_FILENO, QSocketNotifier::Read, this);
     connect(notifier_, &QSocketNotifier::activated, this, &StdinControl::onReadable);
@@ -108,6 +161,10 @@ QString StdinControl::execute(const QString& line) {
     link_.backToSimulator();
     return ok;
   }
+  if (command == QStringLiteral("mapbuild"))
+    return mapBuild(words);
+  if (command == QStringLiteral("screenshot"))
+    return screenshot(words);
   if (command == QStringLiteral("status"))
     return statusLine();
   if (command == QStringLiteral("quit")) {
@@ -117,16 +174,77 @@ QString StdinControl::execute(const QString& line) {
   return fail(QStringLiteral("unknown command"));
 }
 
+QString StdinControl::mapBuild(const QStringList& words) {
+  const QString command = QStringLiteral("mapbuild");
+  const auto fail = [&command](const QString& reason) {
+    return QStringLiteral("error %1: %2").arg(command, reason);
+  };
+  const QString ok = QStringLiteral("ok %1").arg(command);
+  const QString action = words.size() >= 2 ? words[1] : QString();
+  const bool save = action == QStringLiteral("save");
+  if (words.size() != (save ? 3 : 2) ||
+      !(save || action == QStringLiteral("start") || action == QStringLiteral("pause") ||
+        action == QStringLiteral("resume") || action == QStringLiteral("abort")))
+    return fail(QStringLiteral("usage: mapbuild start|pause|resume|abort|save FILE.yaml"));
+  PlanningController* planning = this->planning();
+  if (planning == nullptr)
+    return fail(QStringLiteral("no planning controller in this window"));
+  const bool building = planning->mapBuilding() != nullptr && planning->behaviours().running();
+  if (action == QStringLiteral("start")) {
+    if (planning->behaviours().running())
+      return fail(QStringLiteral("a behaviour is already running (%1)")
+                      .arg(planning->behaviours().label()));
+    return planning->startMapBuilding() ? ok : fail(QStringLiteral("map building cannot run"));
+  }
+  if (save) {
+    const auto error = planning->saveBuiltMap(words[2]);
+    return error ? fail(*error) : ok;
+  }
+  if (!building)
+    return fail(QStringLiteral("map building is not running"));
+  if (action == QStringLiteral("abort"))
+    planning->stopAll(tr("aborted by the user"));
+  else
+    planning->setMapBuildingPaused(action == QStringLiteral("pause"));
+  return ok;
+}
+
+QString StdinControl::screenshot(const QStringList& words) {
+  const QString command = QStringLiteral("screenshot");
+  if (words.size() != 2)
+    return QStringLiteral("error %1: usage: screenshot FILE.png").arg(command);
+  auto* window = qobject_cast<QWidget*>(link_.parent());
+  if (window == nullptr)
+    return QStringLiteral("error %1: no window").arg(command);
+  if (auto* main = qobject_cast<MainWindow*>(window))
+    main->refreshStatus();  // the status bar is refreshed on a throttle: bring it up to date
+  const QString path = words[1];
+  if (!QFileInfo(QFileInfo(path).absolutePath()).isDir())
+    return QStringLiteral("error %1: no directory for %2").arg(command, path);
+  if (!window->window()->grab().save(path, "PNG"))
+    return QStringLiteral("error %1: cannot write %2").arg(command, path);
+  return QStringLiteral("ok %1").arg(command);
+}
+
+void StdinControl::setPlanning(PlanningController* planning) {
+  planning_ = planning;
+}
+
+PlanningController* StdinControl::planning() const {
+  if (planning_.isNull() && link_.parent() != nullptr)
+    planning_ =
+        link_.parent()->findChild<PlanningController*>(QString(), Qt::FindDirectChildrenOnly);
+  return planning_.data();
+}
+
 QString StdinControl::statusLine() const {
-  const LinkController& link = link_.controller();
-  const TelemetryRates rates = link.rates();
-  const widgets::LinkHealth health = link.health();
+  const LinkSummary link = summarise(link_.controller(), session_);
+  const TelemetryRates& rates = link.rates;
   QString line = QStringLiteral(
                      "status wall_s=%1 link=%2 samples=%3 odom_hz=%4 sonar_hz=%5 "
                      "sonar_readings_per_s=%6 explored_m2=%7")
                      .arg(static_cast<double>(wall_.nsecsElapsed()) * 1e-9, 0, 'f', 3)
-                     .arg(link.linked() ? widgets::LinkHealthPanel::stateText(health.state)
-                                        : QStringLiteral("none"))
+                     .arg(link.state)
                      .arg(rates.samples)
                      .arg(rates.odometry_hz, 0, 'f', 2)
                      .arg(rates.sonar_hz, 0, 'f', 2)
@@ -143,9 +261,51 @@ QString StdinControl::statusLine() const {
   line += QStringLiteral(" cmd_v=%1 cmd_w=%2 link_losses=%3 reconnects=%4")
               .arg(session_.command().linear_mps, 0, 'f', 3)
               .arg(session_.command().angular_radps, 0, 'f', 3)
-              .arg(health.link_losses)
-              .arg(health.reconnect_attempts);
+              .arg(link.link_losses)
+              .arg(link.reconnects);
+  QString phase = QStringLiteral("none");
+  double progress = 0.0;
+  std::size_t indices = 0;
+  double distance_m = 0.0;
+  int obstacles = 0;
+  if (PlanningController* planning = this->planning()) {
+    if (const MapBuildingBehaviour* building = planning->mapBuilding()) {
+      phase = token(toString(building->phase()));
+      const bool ended = building->phase() == MapBuildingPhase::kDone ||
+                         building->phase() == MapBuildingPhase::kFailed;
+      if (!planning->behaviours().running() && !ended)
+        phase = QStringLiteral("aborted");
+      progress = building->status().progress;
+      indices = building->allIndices().size();
+      distance_m = building->distanceTravelled_m();
+      obstacles = building->obstacleCount();
+    }
+  }
+  line += QStringLiteral(" mb=%1 mb_progress=%2 mb_indices=%3 mb_distance_m=%4 mb_obstacles=%5")
+              .arg(phase)
+              .arg(progress, 0, 'f', 3)
+              .arg(indices)
+              .arg(distance_m, 0, 'f', 2)
+              .arg(obstacles);
   return line;
+}
+
+void StdinControl::onConsole(EventLevel level, const QString& text) {
+  QString name;
+  switch (level) {
+    case EventLevel::kInfo:
+      name = QStringLiteral("info");
+      break;
+    case EventLevel::kWarning:
+      name = QStringLiteral("warning");
+      break;
+    case EventLevel::kError:
+      name = QStringLiteral("error");
+      break;
+    case EventLevel::kSensor:
+      return;  // periodic readings: the status line carries the numbers
+  }
+  print(QStringLiteral("console %1 %2").arg(name, text.simplified()));
 }
 
 void StdinControl::print(const QString& line) {

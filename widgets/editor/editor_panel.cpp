@@ -1,0 +1,214 @@
+#include "widgets/editor/editor_panel.hpp"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QListWidget>
+#include <QToolButton>
+#include <QUndoStack>
+#include <QVBoxLayout>
+#include <algorithm>
+
+#include "widgets/editor/editor_model.hpp"
+#include "widgets/editor/property_panel.hpp"
+
+namespace irgs::widgets {
+namespace {
+
+struct ToolInfo {
+  EditorTool tool;
+  const char* label;
+  const char* tip;
+};
+
+constexpr ToolInfo kTools[] = {
+    {EditorTool::kSelect, "Select", "Select, move (drag) and edit vertices of the selection"},
+    {EditorTool::kWall, "Wall",
+     "Draw a wall: click points, double-click or Enter to finish; "
+     "click the first point to close the outline"},
+    {EditorTool::kPolygon, "Obstacle",
+     "Draw a polygon obstacle: click at least three points, "
+     "double-click or Enter to finish"},
+    {EditorTool::kStart, "Start pose", "Press at the start position, drag for the heading"},
+    {EditorTool::kCorner, "Corner", "Place a corner (concave) feature"},
+    {EditorTool::kEdge, "Edge", "Place an edge (convex) feature"},
+    {EditorTool::kMeasure, "Measure", "Drag to measure a distance and heading"},
+};
+
+QToolButton* button(QAction* action, QWidget* parent) {
+  auto* b = new QToolButton(parent);
+  b->setDefaultAction(action);
+  b->setToolButtonStyle(Qt::ToolButtonTextOnly);
+  b->setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
+  return b;
+}
+
+}  // namespace
+
+EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent)
+    : QWidget(parent), model_(model), layer_(layer) {
+  setObjectName(QStringLiteral("editorPanel"));
+  auto* layout = new QVBoxLayout(this);
+
+  // Tools.
+  auto* tools_box = new QGroupBox(tr("Tools"), this);
+  auto* tools_grid = new QGridLayout(tools_box);
+  tools_grid->setSpacing(4);
+  tool_group_ = new QActionGroup(this);
+  int i = 0;
+  for (const ToolInfo& info : kTools) {
+    auto* action = new QAction(tr(info.label), this);
+    action->setToolTip(tr(info.tip));
+    action->setStatusTip(tr(info.tip));
+    action->setCheckable(true);
+    action->setObjectName(QStringLiteral("editorTool") +
+                          QString::fromLatin1(info.label).remove(QLatin1Char(' ')));
+    tool_group_->addAction(action);
+    const EditorTool tool = info.tool;
+    connect(action, &QAction::triggered, this, [this, tool] { layer_.setTool(tool); });
+    tools_[tool] = action;
+    tools_grid->addWidget(button(action, tools_box), i / 4, i % 4);
+    ++i;
+  }
+  tools_.at(layer_.tool())->setChecked(true);
+  connect(&layer_, &EditorLayer::toolChanged, this,
+          [this](EditorTool tool) { tools_.at(tool)->setChecked(true); });
+  layout->addWidget(tools_box);
+
+  // Edit actions.
+  undo_ = model_.undoStack().createUndoAction(this, tr("Undo"));
+  undo_->setShortcut(QKeySequence::Undo);
+  redo_ = model_.undoStack().createRedoAction(this, tr("Redo"));
+  redo_->setShortcut(QKeySequence::Redo);
+  copy_ = new QAction(tr("Copy"), this);
+  copy_->setShortcut(QKeySequence::Copy);
+  paste_ = new QAction(tr("Paste"), this);
+  paste_->setShortcut(QKeySequence::Paste);
+  delete_ = new QAction(tr("Delete"), this);
+  delete_->setShortcut(QKeySequence::Delete);
+  // The keys work while the canvas layer or this panel has the focus (not in other tabs).
+  for (QAction* a : {undo_, redo_, copy_, paste_, delete_}) {
+    a->setShortcutContext(Qt::WidgetWithChildrenShortcut);
+    layer_.addAction(a);
+    addAction(a);
+  }
+  connect(copy_, &QAction::triggered, &model_, [this] {
+    model_.copySelection();
+    updateActions();
+  });
+  connect(paste_, &QAction::triggered, &model_, [this] { model_.paste(pasteOffset()); });
+  connect(delete_, &QAction::triggered, &model_, &EditorModel::deleteSelection);
+  auto* edit_row = new QHBoxLayout;
+  for (QAction* a : {undo_, redo_, copy_, paste_, delete_}) {
+    QToolButton* b = button(a, this);
+    b->setToolButtonStyle(Qt::ToolButtonTextOnly);
+    edit_row->addWidget(b);
+  }
+  layout->addLayout(edit_row);
+
+  // Snapping.
+  auto* snap_box = new QGroupBox(tr("Snap"), this);
+  auto* snap = new QGridLayout(snap_box);
+  grid_ = new QCheckBox(tr("Grid"), snap_box);
+  grid_->setChecked(model_.snapSettings().grid);
+  grid_step_ = new QDoubleSpinBox(snap_box);
+  grid_step_->setRange(0.01, 10.0);
+  grid_step_->setDecimals(2);
+  grid_step_->setSingleStep(0.05);
+  grid_step_->setSuffix(QStringLiteral(" m"));
+  grid_step_->setValue(model_.snapSettings().grid_step_m);
+  endpoints_ = new QCheckBox(tr("Endpoints"), snap_box);
+  endpoints_->setChecked(model_.snapSettings().endpoints);
+  angle_ = new QComboBox(snap_box);
+  angle_->addItem(tr("Any angle"), 0.0);
+  angle_->addItem(QStringLiteral("15°"), 15.0);
+  angle_->addItem(QStringLiteral("45°"), 45.0);
+  angle_->addItem(QStringLiteral("90°"), 90.0);
+  angle_->setCurrentIndex(2);
+  snap->addWidget(grid_, 0, 0);
+  snap->addWidget(grid_step_, 0, 1);
+  snap->addWidget(endpoints_, 1, 0, 1, 2);
+  snap->addWidget(new QLabel(tr("Angles from the last point"), snap_box), 2, 0);
+  snap->addWidget(angle_, 2, 1);
+  layout->addWidget(snap_box);
+  connect(grid_, &QCheckBox::toggled, this, &EditorPanel::updateSnap);
+  connect(grid_step_, &QDoubleSpinBox::valueChanged, this, &EditorPanel::updateSnap);
+  connect(endpoints_, &QCheckBox::toggled, this, &EditorPanel::updateSnap);
+  connect(angle_, &QComboBox::currentIndexChanged, this, &EditorPanel::updateSnap);
+  updateSnap();
+
+  // Selection properties.
+  auto* props_box = new QGroupBox(tr("Selection"), this);
+  auto* props_layout = new QVBoxLayout(props_box);
+  properties_ = new PropertyPanel(model_, props_box);
+  props_layout->addWidget(properties_);
+  layout->addWidget(props_box, 1);
+
+  // Validation.
+  issue_title_ = new QLabel(this);
+  layout->addWidget(issue_title_);
+  issues_ = new QListWidget(this);
+  issues_->setObjectName(QStringLiteral("editorIssues"));
+  issues_->setWordWrap(true);
+  issues_->setMaximumHeight(110);
+  layout->addWidget(issues_);
+  connect(issues_, &QListWidget::itemClicked, this, [this](QListWidgetItem* item) {
+    const int row = issues_->row(item);
+    const auto& list = model_.issues();
+    if (row < 0 || row >= static_cast<int>(list.size()))
+      return;
+    const editing::MapIssue& issue = list[static_cast<std::size_t>(row)];
+    model_.setSelection(issue.elements);
+    emit issueActivated(issue.position.x(), issue.position.y());
+  });
+  connect(&model_, &EditorModel::issuesChanged, this, &EditorPanel::refreshIssues);
+  connect(&model_, &EditorModel::selectionChanged, this, &EditorPanel::updateActions);
+  refreshIssues();
+  updateActions();
+}
+
+Vec2 EditorPanel::pasteOffset() const {
+  const double step = std::max(grid_step_->value(), 0.1);
+  return {step, -step};
+}
+
+void EditorPanel::updateSnap() {
+  editing::SnapSettings s = model_.snapSettings();
+  s.grid = grid_->isChecked();
+  s.grid_step_m = grid_step_->value();
+  s.endpoints = endpoints_->isChecked();
+  s.angle_step_rad = degToRad(angle_->currentData().toDouble());
+  grid_step_->setEnabled(s.grid);
+  model_.setSnapSettings(s);
+}
+
+void EditorPanel::refreshIssues() {
+  issues_->clear();
+  const auto& list = model_.issues();
+  int errors = 0;
+  for (const editing::MapIssue& issue : list) {
+    auto* item = new QListWidgetItem(QString::fromStdString(issue.message), issues_);
+    const bool error = issue.severity == Severity::kError;
+    errors += error ? 1 : 0;
+    item->setForeground(error ? QColor(176, 0, 32) : QColor(150, 95, 0));
+  }
+  issue_title_->setText(
+      list.empty() ? tr("Validation: no issues")
+                   : tr("Validation: %1 issue(s), %2 error(s)").arg(list.size()).arg(errors));
+  issues_->setVisible(!list.empty());
+}
+
+void EditorPanel::updateActions() {
+  const bool any = !model_.selection().empty();
+  copy_->setEnabled(any);
+  delete_->setEnabled(any);
+  paste_->setEnabled(model_.canPaste());
+}
+
+}  // namespace irgs::widgets
