@@ -110,6 +110,8 @@ void TelemetryAssembler::poseUpdated(double now_s) {
 }
 
 void TelemetryAssembler::release() {
+  flushLate();
+  released_by_hold_ = false;
   TelemetrySample sample = std::move(current_.sample);
   sample.time_s = static_cast<double>(current_.time_ms.value_or(0)) * 1e-3;
   sample.odometry_pose.theta = wrapAngle(sample.odometry_pose.theta);
@@ -127,8 +129,48 @@ void TelemetryAssembler::release() {
   ++counters_.samples;
   released_ms_ = current_.time_ms;
   last_pose_ = sample.odometry_pose;
+  last_velocity_ = sample.measured_velocity;
   ready_.push_back(std::move(sample));
   current_ = {};
+}
+
+bool TelemetryAssembler::belongsToHeldRelease(std::int64_t time_ms) const {
+  return released_by_hold_ && released_ms_ && time_ms <= *released_ms_ && !current_.time_ms &&
+         time_ms >= *released_ms_ - kRestartJump_ms;
+}
+
+void TelemetryAssembler::addLateReading(const SonarReading& reading) {
+  if (reading.sensor < 0 || static_cast<std::size_t>(reading.sensor) >= profile_.sonars.size()) {
+    ++counters_.ignored_readings;
+    return;
+  }
+  const double released_s = static_cast<double>(*released_ms_) * 1e-3;
+  if (!ready_.empty() && ready_.back().time_s == released_s) {
+    ready_.back().sonar.push_back(reading);  // the held sample is not taken yet: join it
+    ++counters_.sonar_readings;
+    return;
+  }
+  if (!late_) {
+    late_ = TelemetrySample{};
+    late_->time_s = released_s;
+    late_->odometry_pose = last_pose_.value_or(Pose2{});
+    late_->measured_velocity = last_velocity_;
+  }
+  late_->sonar.push_back(reading);
+}
+
+void TelemetryAssembler::flushLate() {
+  if (!late_)
+    return;
+  TelemetrySample sample = std::move(*late_);
+  late_.reset();
+  sample.left_ticks = carried_.left_ticks;
+  sample.right_ticks = carried_.right_ticks;
+  sample.bumpers = carried_.bumpers;
+  sample.proximity_m = carried_.proximity_m;
+  counters_.sonar_readings += sample.sonar.size();
+  ++counters_.late_samples;
+  ready_.push_back(std::move(sample));
 }
 
 void TelemetryAssembler::addReading(const SonarReading& reading) {
@@ -225,7 +267,9 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
       const auto ds = frame.as<mav::DistanceSensor>();
       if (!ds)
         return;
-      advanceTo(ds->time_boot_ms, false);
+      const bool late = belongsToHeldRelease(ds->time_boot_ms);
+      if (!late)
+        advanceTo(ds->time_boot_ms, false);
       SonarReading r;
       r.sensor = ds->id;
       if (ds->current_distance == 0) {  // not a measurement (some sensors report 0 for none)
@@ -240,14 +284,19 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
         r.range_m = ds->current_distance * 0.01;
       else if (static_cast<std::size_t>(r.sensor) < profile_.sonars.size())
         r.range_m = profile_.sonars[static_cast<std::size_t>(r.sensor)].max_range_m;
-      addReading(r);
+      if (late)
+        addLateReading(r);
+      else
+        addReading(r);
       break;
     }
     case mav::IrgsSonarScan::kId: {
       const auto scan = frame.as<mav::IrgsSonarScan>();
       if (!scan)
         return;
-      advanceTo(scan->time_boot_ms, false);
+      const bool late = belongsToHeldRelease(scan->time_boot_ms);
+      if (!late)
+        advanceTo(scan->time_boot_ms, false);
       const std::size_t count = std::min<std::size_t>(scan->count, scan->range.size());
       for (std::size_t i = 0; i < count; ++i) {
         if (((scan->fired >> i) & 1u) == 0)
@@ -259,7 +308,10 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
           r.range_m = scan->range[i] * 0.001;
         else if (i < profile_.sonars.size())
           r.range_m = profile_.sonars[i].max_range_m;
-        addReading(r);
+        if (late)
+          addLateReading(r);
+        else
+          addReading(r);
       }
       break;
     }
@@ -267,7 +319,8 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
       const auto ticks = frame.as<mav::IrgsEncoderTicks>();
       if (!ticks)
         return;
-      advanceTo(usToMs(ticks->time_usec), false);
+      if (!belongsToHeldRelease(usToMs(ticks->time_usec)))
+        advanceTo(usToMs(ticks->time_usec), false);
       carried_.left_ticks = ticks->left_ticks;
       carried_.right_ticks = ticks->right_ticks;
       break;
@@ -276,7 +329,8 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
       const auto contact = frame.as<mav::IrgsContact>();
       if (!contact)
         return;
-      advanceTo(contact->time_boot_ms, false);
+      if (!belongsToHeldRelease(contact->time_boot_ms))
+        advanceTo(contact->time_boot_ms, false);
       carried_.bumpers = contact->bumpers;
       const std::size_t count = std::min<std::size_t>(
           {contact->proximity_count, contact->proximity.size(), profile_.proximity.size()});
@@ -294,14 +348,19 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
 }
 
 void TelemetryAssembler::tick(double now_s) {
+  flushLate();  // a step's late readings arrive together; the next tick sends them on
   if (current_.has_xy && current_.has_theta && current_.complete_since_s &&
-      now_s - *current_.complete_since_s >= config_.hold_s)
+      now_s - *current_.complete_since_s >= config_.hold_s) {
     release();
+    released_by_hold_ = !config_.release_on_pose;
+  }
 }
 
 void TelemetryAssembler::reset() {
   if (current_.has_xy && current_.has_theta)
     release();
+  flushLate();
+  released_by_hold_ = false;
   current_ = {};
   newest_ms_.reset();
   released_ms_.reset();

@@ -19,7 +19,11 @@
 // sample leaves as soon as its pose is complete (lowest latency); readings stamped with its time
 // that arrive afterwards ride on the next sample (their pose then lags by one period).
 // Readings older than the sample being assembled join it (IRGS_SONAR_SCAN carries the time of
-// its newest reading, which may precede the pose).
+// its newest reading, which may precede the pose). When the hold timer released a sample and
+// readings of its time stamp (or older) still arrive before any newer step, they leave in a
+// supplementary sample with the same time and pose: so which pose a reading rides on depends
+// on the byte stream alone, never on the timer, and a replay of the recorded bytes builds the
+// same map as the live session did.
 //
 // A time stamp more than kRestartJump_ms older than the newest one means the robot restarted:
 // the assembler starts over (counted in restarts). Call reset() when the link is re-established.
@@ -47,6 +51,7 @@ struct TelemetryAssemblerCounters {
   std::uint64_t ignored_readings = 0;    // unknown sensor index, zero range, dropped without pose
   std::uint64_t stale_poses = 0;         // pose messages older than the sample being assembled
   std::uint64_t duplicate_poses = 0;     // further pose messages of a step that had its pose
+  std::uint64_t late_samples = 0;        // supplementary samples of readings after a hold release
   std::uint64_t unsupported_frames = 0;  // ODOMETRY in a frame we cannot convert
   std::uint64_t restarts = 0;            // robot clock jumped back (reboot)
 };
@@ -96,6 +101,12 @@ class TelemetryAssembler {
   void poseUpdated(double now_s);
   void release();
   void addReading(const SonarReading& reading);
+  // Readings stamped with the time of a sample the hold timer released (or older) while no
+  // newer step has begun: they ride on that sample's pose in a supplementary sample
+  // (`late_`), as they would have had the timer waited. Default mode only.
+  bool belongsToHeldRelease(std::int64_t time_ms) const;
+  void addLateReading(const SonarReading& reading);
+  void flushLate();
   void onLocalPosition(const mavlink::Frame& frame, double now_s);
 
   RobotProfile profile_;
@@ -104,6 +115,9 @@ class TelemetryAssembler {
   std::optional<std::int64_t> newest_ms_;    // newest time stamp seen since the last reset
   std::optional<std::int64_t> released_ms_;  // time of the last released sample
   std::optional<Pose2> last_pose_;           // pose of the last released sample
+  VelocityCommand last_velocity_{};          // velocity of the last released sample
+  bool released_by_hold_ = false;            // the last release was the hold timer's
+  std::optional<TelemetrySample> late_;      // supplementary sample for late readings
   TelemetrySample carried_;                  // ticks, bumpers, proximity of the newest data
   std::vector<TelemetrySample> ready_;
   TelemetryAssemblerCounters counters_;

@@ -272,6 +272,54 @@ TEST(TelemetryAssembler, TheFirstCompletePoseOfAStepWinsWhateverTheHoldTimerDid)
   EXPECT_EQ(replayed.theta, loaded.theta);
 }
 
+TEST(TelemetryAssembler, ReadingsAfterAHoldReleaseRideOnTheirOwnStepsPose) {
+  // Live under load the hold timer may release step 100 before its sonar readings arrive; a
+  // replay of the same bytes does not. Every reading must meet the same pose either way.
+  struct Ride {
+    double time_s, x;
+    int sensor;
+    double range_m;
+    bool operator==(const Ride&) const = default;
+  };
+  const auto feed = [](bool hold_fires_early) {
+    TelemetryAssembler assembler(testing::thesisRobot(), {.hold_s = 0.1});
+    std::vector<TelemetrySample> samples;
+    const auto take = [&] {
+      for (auto& s : assembler.takeReady())
+        samples.push_back(std::move(s));
+    };
+    assembler.onFrame(lpn(100, 1.0f, 0.0f), 10.0);
+    assembler.onFrame(att(100, 0.0f), 10.0);
+    assembler.onFrame(ds(100, 1, 120), 10.01);
+    if (hold_fires_early) {
+      assembler.tick(10.2);
+      take();  // the owner took the held sample before the rest of its readings came
+    }
+    assembler.onFrame(ds(100, 2, 150), 10.21);
+    assembler.onFrame(ds(100, 3, 180), 10.21);
+    assembler.tick(10.22);
+    take();
+    assembler.onFrame(lpn(150, 1.1f, 0.0f), 10.25);
+    assembler.onFrame(att(150, 0.0f), 10.25);
+    assembler.onFrame(ds(150, 4, 90), 10.26);
+    assembler.onFrame(lpn(200, 1.2f, 0.0f), 10.3);
+    take();
+    std::vector<Ride> rides;
+    for (const auto& s : samples)
+      for (const auto& r : s.sonar)
+        rides.push_back({s.time_s, s.odometry_pose.x, r.sensor, r.range_m});
+    return std::pair{rides, assembler.counters().late_samples};
+  };
+  const auto [loaded, late_loaded] = feed(true);
+  const auto [replayed, late_replayed] = feed(false);
+  ASSERT_EQ(loaded.size(), 4u);
+  EXPECT_EQ(loaded, replayed);
+  EXPECT_EQ(late_loaded, 1u) << "the late readings should have left in one supplementary sample";
+  EXPECT_EQ(late_replayed, 0u);
+  EXPECT_EQ(loaded[1].time_s, 0.1);
+  EXPECT_EQ(loaded[1].x, static_cast<double>(1.0f));  // sensor 2 rode on step 100's pose
+}
+
 TEST(TelemetryAssembler, UnknownSensorsAndZeroRangesAreCountedNotDelivered) {
   TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
   assembler.onFrame(ds(100, 200, 100), 0.0);  // the thesis robot has 8 sonars
