@@ -31,7 +31,10 @@ LinkedRobotHandle::~LinkedRobotHandle() {
 }
 
 std::vector<TelemetrySample> LinkedRobotHandle::update(double wall_elapsed_s) {
-  std::vector<TelemetrySample> samples = robot_->update(wall_elapsed_s);
+  return rebase(robot_->update(wall_elapsed_s));
+}
+
+std::vector<TelemetrySample> LinkedRobotHandle::rebase(std::vector<TelemetrySample> samples) {
   for (TelemetrySample& sample : samples) {
     const double robot_time_s = sample.time_s;
     if (!have_time_) {

@@ -39,12 +39,15 @@ class LinkedRobotHandle final : public Robot {
   void drive(const VelocityCommand& command) override { robot_->drive(command); }
   void stop() override { robot_->stop(); }
   std::vector<TelemetrySample> update(double wall_elapsed_s) override;
+  std::vector<TelemetrySample> finish() override { return rebase(robot_->finish()); }
 
   comms::LinkedRobot& linked() { return *robot_; }
   const std::string& url() const { return url_; }
   TelemetryRates rates() const;
 
  private:
+  // Puts the robot's samples on our monotonic clock (robot reboots included) and counts rates.
+  std::vector<TelemetrySample> rebase(std::vector<TelemetrySample> samples);
   std::shared_ptr<comms::IoThread> io_;  // declared first: destroyed after the robot
   std::unique_ptr<comms::LinkedRobot> robot_;
   std::string url_;

@@ -30,6 +30,7 @@
 #include "app/gui/session_controller.hpp"
 #include "app/gui/startup.hpp"
 #include "app/gui/stdin_control.hpp"
+#include "core/sim/gyro_sim.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "core/sim/simulated_robot.hpp"
 
@@ -61,6 +62,9 @@ RobotFactory simulatedRobotFactory(std::uint64_t seed) {
                 const irgs::RobotProfile& profile) -> std::unique_ptr<irgs::Robot> {
     // The same typical odometry errors as irgs-sim: a real robot's map smears, so does ours.
     irgs::SimConfig config = irgs::typicalSimConfig();
+    // And a yaw-rate gyro at the AUTOGYRO level of paper 001 (its own random stream: every
+    // other output is the same as without it), so the encoder + gyro filter has its sensor.
+    config.gyro = irgs::autogyroErrorModel();
     config.seed = seed;
     auto robot = std::make_unique<irgs::SimulatedRobot>(world, profile, config);
     // At speed "max" the session calls update() repeatedly within its tick budget; small
@@ -262,8 +266,10 @@ int main(int argc, char** argv) {
     player->start();
   automation.start();
   const int code = QApplication::exec();
-  // Close the recording now: the link keeps receiving until the window goes, and a recording
-  // that ends where the session stopped integrating replays to the same map.
+  // End the robot's session first (a linked robot closes its link and hands over the sample it
+  // held), then close the recording: the recording ends on the last byte the map took in, so a
+  // replay of it builds the same map.
+  session.finishRobot();
   recording->stopRecording();
   std::string dump_error;
   if (!options.trajectory_out_file.isEmpty())

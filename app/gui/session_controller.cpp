@@ -3,6 +3,7 @@
 #include <QFileInfo>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -234,7 +235,30 @@ void SessionController::advanceRobot(double wall_s, const QElapsedTimer& tick_cl
 }
 
 std::size_t SessionController::integratePending(const QElapsedTimer& tick_clock) {
-  const auto budget_ns = static_cast<qint64>(kTickBudget_s * 1e9);
+  return integratePending(tick_clock, static_cast<qint64>(kTickBudget_s * 1e9));
+}
+
+void SessionController::finishRobot() {
+  if (robot_) {
+    for (TelemetrySample& sample : robot_->finish()) {
+      sample.time_s += time_offset_s_;
+      robot_time_s_ = std::max(robot_time_s_, sample.time_s);
+      if (sample_observer_)
+        sample_observer_(sample);
+      pending_.push_back(std::move(sample));
+    }
+  }
+  integrateAllPending();
+}
+
+void SessionController::integrateAllPending() {
+  QElapsedTimer clock;
+  clock.start();
+  if (integratePending(clock, std::numeric_limits<qint64>::max()) > 0)
+    emit gridChanged(grid_.takeDirtyRect());
+}
+
+std::size_t SessionController::integratePending(const QElapsedTimer& tick_clock, qint64 budget_ns) {
   std::size_t integrated = 0;
   int shown_this_tick = 0;
   // At least one sample per tick, so progress never stops however slow a sample is.

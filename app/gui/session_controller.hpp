@@ -73,6 +73,12 @@ class SessionController : public QObject {
   const QString& worldSource() const { return source_; }
   const RobotProfile& profile() const { return profile_; }
   const OccupancyGrid& grid() const { return grid_; }
+  // Integrates every sample still waiting (a slow machine may be behind the robot), so what is
+  // written at exit holds all the robot sent — as a replay of the session's recording will.
+  void integrateAllPending();
+  // Ends the session with the robot (Robot::finish: a linked robot closes its link) and
+  // integrates everything it delivered. Call once, at exit, before the recording is closed.
+  void finishRobot();
   Robot* robot() { return robot_.get(); }
   // Null when the robot's clock is not ours (a linked robot).
   SimulationControl* simulationControl();
@@ -142,6 +148,7 @@ class SessionController : public QObject {
   double applySchedule();
   // Integrates pending samples until the tick budget is used (at least one); returns how many.
   std::size_t integratePending(const QElapsedTimer& tick_clock);
+  std::size_t integratePending(const QElapsedTimer& tick_clock, qint64 budget_ns);
   void noteEvents(const TelemetrySample& sample);
   void maybeEmitSensorLine();
 

@@ -332,6 +332,30 @@ std::vector<TelemetrySample> LinkedRobot::update(double /*wall_elapsed_s*/) {
   return out;
 }
 
+std::vector<TelemetrySample> LinkedRobot::finish() {
+  link_->close();
+  // Runs after the close on the io thread: no byte is taken in any more, so what the assembler
+  // holds is all there is.
+  const auto release = [state = state_] {
+    state->stopTimer();
+    state->assembler.reset();
+    const std::lock_guard lock(state->mutex);
+    state->moveReadyLocked();
+  };
+  IoThread& io = state_->io;
+  if (io.isCurrentThread() || !io.running()) {
+    release();
+  } else {
+    std::promise<void> done;
+    boost::asio::post(io.context(), [&done, &release] {
+      release();
+      done.set_value();
+    });
+    done.get_future().wait();
+  }
+  return update(0.0);
+}
+
 LinkState LinkedRobot::linkState() const {
   return link_->state();
 }

@@ -90,6 +90,8 @@ class LinkedRobot final : public Robot {
   void drive(const VelocityCommand& command) override;
   void stop() override;
   std::vector<TelemetrySample> update(double wall_elapsed_s) override;
+  // Closes the link and releases the sample the assembler still holds (and late readings).
+  std::vector<TelemetrySample> finish() override;
 
   // Link-specific, for the link-health panel, the console and irgs-sim.
   LinkState linkState() const;

@@ -41,6 +41,12 @@ class Robot {
   // it drains what arrived.
   virtual std::vector<TelemetrySample> update(double wall_elapsed_s) = 0;
 
+  // Ends the session with this robot: no more data is taken in (a linked robot closes its
+  // link), and what the robot still holds is returned, oldest first — a linked robot's last,
+  // partly assembled sample — so the session's map ends on the last byte received. The robot
+  // may only be destroyed afterwards. A simulator holds nothing.
+  virtual std::vector<TelemetrySample> finish() { return {}; }
+
   // Present only when the ground station owns the robot's clock.
   virtual SimulationControl* simulationControl() { return nullptr; }
 };

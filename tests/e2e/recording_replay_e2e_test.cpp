@@ -103,6 +103,10 @@ class RecordingReplayEndToEnd : public ::testing::Test {
     ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
   }
   void TearDown() override {
+    if (std::getenv("IRGS_KEEP_TEST_DIR") != nullptr) {  // for a look at the files by hand
+      std::printf("[ info ] kept %s\n", dir_.c_str());
+      return;
+    }
     std::error_code ec;
     fs::remove_all(dir_, ec);
   }
