@@ -18,6 +18,7 @@
 
 #include "app/gui/event_format.hpp"
 #include "app/gui/session_controller.hpp"
+#include "core/calibration/profile_calibration.hpp"
 #include "core/estimation/stereo_measurement_model.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/plots/error_plot_panel.hpp"
@@ -205,6 +206,14 @@ void LocalizationController::restart() {
       // A belief placed by eye can be far off: gate the outliers instead of trusting them.
       config.ekf.gate = 16.0;
     }
+    // The gyro's scale factor and temperature bias as calibrated for this robot (the gyro
+    // wizard writes them into the profile); without them the filter integrates the raw rate
+    // and its bias state has to absorb the error.
+    config.gyro_calibration = profileGyroCalibration(session_.profile());
+    if (*kind_ == EstimatorKind::kEncoderGyro && !config.gyro_calibration)
+      session_.report(EventLevel::kInfo,
+                      tr("Localization: the robot profile has no gyro calibration — the raw gyro "
+                         "rate is used (calibrate the gyro to record one)"));
     const Pose2 start = initial_pose_.value_or(session_.worldMap().start);
     try {
       runner_ =
