@@ -66,6 +66,7 @@ TelemetrySample ArcosTelemetryConverter::convert(const arcos::StandardSip& sip, 
     const bool echo = range_m > 0.0 && range_m < spec.max_range_m - 1e-6;
     s.sonar.push_back({static_cast<int>(r.index), echo ? range_m : spec.max_range_m, echo});
   }
+  s.drive_stalled = sip.leftStalled() || sip.rightStalled();
   for (std::size_t i = 0; i < bumper_bits_.size() && i < 32; ++i) {
     if (bumper_bits_[i] >= 0 && ((sip.stall_and_bumpers >> bumper_bits_[i]) & 1u) != 0)
       s.bumpers |= 1u << i;

@@ -995,7 +995,7 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
         cmd = followStep(sample, pose);
         break;
       case MapBuildingPhase::kInterior:
-        if (sample.bumpers != 0) {
+        if (inContact(sample)) {
           move_ = Move::kBackUp;
           move_start_ = pose.position();
           if (target_)

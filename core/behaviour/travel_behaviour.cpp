@@ -264,7 +264,7 @@ VelocityCommand TravelBehaviour::driveCommand(const TelemetrySample& sample) {
     startSegment(reached, sample.time_s);
     return {};
   }
-  if (options_.stop_on_bumper && sample.bumpers != 0) {
+  if (options_.stop_on_bumper && inContact(sample)) {
     finish(true, "bumper pressed at " + formatPoint(p) + " on leg " + std::to_string(segment_ + 1));
     return {};
   }

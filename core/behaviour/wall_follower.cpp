@@ -187,7 +187,7 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
   last_pose_ = pose;
   have_pose_ = true;
 
-  if (sample.bumpers != 0 && mode_ != WallFollowMode::kBackUp && mode_ != WallFollowMode::kTurn) {
+  if (inContact(sample) && mode_ != WallFollowMode::kBackUp && mode_ != WallFollowMode::kTurn) {
     ++bumps_;
     mode_ = WallFollowMode::kBackUp;
     leg_start_ = pose.position();

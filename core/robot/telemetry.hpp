@@ -44,6 +44,14 @@ struct TelemetrySample {
   std::uint32_t bumpers = 0;        // bit i = bumper i pressed
   std::vector<double> proximity_m;  // per proximity sensor; max range when nothing seen
   std::optional<GyroReading> gyro;  // present when the robot has a gyro
+  // The robot reports its drive blocked: commanded but not moving (ARCOS SIP stall bits).
+  // For robots without bumpers (Pioneers, AmigoBots) this is the only sign of a collision.
+  bool drive_stalled = false;
 };
+
+// The body touches something: a bumper is pressed or the drive reports a stall.
+inline bool inContact(const TelemetrySample& sample) {
+  return sample.bumpers != 0 || sample.drive_stalled;
+}
 
 }  // namespace irgs

@@ -147,8 +147,16 @@ class ArcosGuiEndToEnd : public ::testing::Test {
     ADD_FAILURE() << "timed out after " << timeout_s << " s waiting for " << what
                   << "; last status: link=" << text(last, "link")
                   << " samples=" << text(last, "samples") << " mb=" << text(last, "mb")
-                  << " mb_indices=" << text(last, "mb_indices");
+                  << " mb_indices=" << text(last, "mb_indices") << "; last console lines:\n"
+                  << lastConsoleLines(25);
     return {};
+  }
+
+  std::string lastConsoleLines(std::size_t n) const {
+    std::string out;
+    for (std::size_t i = console_.size() > n ? console_.size() - n : 0; i < console_.size(); ++i)
+      out += "  " + console_[i] + "\n";
+    return out;
   }
 
   // The answer to a command ("ok …" / "error …"), skipping status and console lines.

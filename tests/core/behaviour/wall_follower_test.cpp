@@ -80,5 +80,21 @@ TEST(WallFollower, StopsOnANonFinitePose) {
   EXPECT_EQ(follower.onSample(s), VelocityCommand{});
 }
 
+// A Pioneer has no bumper switches: a drive that reports itself stalled is its collision, and
+// the follower backs off it as from a bumper (it would push against the obstacle forever).
+TEST(WallFollower, BacksOffWhenTheDriveReportsAStallAsFromABumper) {
+  WallFollower follower(test::thesisRobot());
+  TelemetrySample s;
+  s.time_s = 1.0;
+  const VelocityCommand seeking = follower.onSample(s);
+  EXPECT_GT(seeking.linear_mps, 0.0);  // no wall in sight: drives ahead
+  s.time_s = 1.1;
+  s.drive_stalled = true;
+  const VelocityCommand backing = follower.onSample(s);
+  EXPECT_LT(backing.linear_mps, 0.0);
+  EXPECT_EQ(follower.mode(), WallFollowMode::kBackUp);
+  EXPECT_EQ(follower.bumps(), 1);
+}
+
 }  // namespace
 }  // namespace irgs
