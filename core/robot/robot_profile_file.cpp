@@ -138,7 +138,7 @@ bool nonNegative(double v) {
 
 const std::set<std::string> kTopKeys = {"format_version", "name",      "description",  "notes",
                                         "drive",          "limits",    "body_outline", "sonars",
-                                        "bumpers",        "proximity", "calibration"};
+                                        "bumpers",        "proximity", "calibration",  "arcos"};
 
 // Signed area (shoelace), > 0 for counter-clockwise.
 double signedArea(const std::vector<Vec2>& poly) {
@@ -190,10 +190,14 @@ void readDrive(Reader& r, const Json& root, RobotProfile& profile) {
   r.read(o, ptr, "encoder_counts_per_motor_rad", d.encoder_counts_per_motor_rad, false, positive,
          "> 0");
   r.read(o, ptr, "gear_ratio", d.gear_ratio, false, positive, "> 0");
+  // The drive-type sections are read (and checked) where they are used: "three_caster" by
+  // core/estimation/caster_profile, "mouse_sensors" by core/estimation/mouse_odometry;
+  // "castor_offset_m" is the Type (2,0) robot's castor offset d of 004_…. Kept in `extra`
+  // without a warning.
   r.keepUnknown(
       o, ptr,
       {"type", "wheel_radius_m", "wheelbase_m", "encoder_counts_per_motor_rad", "gear_ratio"},
-      d.extra);
+      d.extra, {"three_caster", "mouse_sensors", "castor_offset_m"});
 }
 
 void readLimits(Reader& r, const Json& root, RobotProfile& profile) {
@@ -488,6 +492,10 @@ RobotProfileResult parseRobotProfileJson(std::string_view text, const std::strin
   // written back by robotProfileToJson through `extra`, read by the calibration code.
   if (const auto it = root.find("calibration"); it != root.end())
     profile.extra["calibration"] = *it;
+  // ARCOS conversion factors of Pioneer-class robots (comms/robot/arcos_params.hpp reads and
+  // checks them): kept as is, without a warning.
+  if (const auto it = root.find("arcos"); it != root.end())
+    profile.extra["arcos"] = *it;
   crossChecks(r, profile);
   if (!hasErrors(result.diagnostics))
     result.profile = std::move(profile);

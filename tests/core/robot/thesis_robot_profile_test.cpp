@@ -1,6 +1,7 @@
 // Checks the bundled default robot against the thesis (paper 003, digest section 4.2).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <set>
 
 #include "core/robot/robot_profile_file.hpp"
@@ -18,6 +19,23 @@ RobotProfile loadThesisRobot() {
 
 TEST(ThesisRobot, LoadsWithoutDiagnostics) {
   EXPECT_EQ(loadThesisRobot().name, "thesis_robot");
+}
+
+// Every bundled robot profile loads clean: a warning at every start would teach users to
+// ignore warnings (the ARCOS section of the Pioneer profiles is a documented key).
+TEST(BundledRobots, EveryProfileLoadsWithoutDiagnostics) {
+  int profiles = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(IRGS_SOURCE_DIR) + "/resources/robots")) {
+    if (entry.path().extension() != ".json")
+      continue;
+    ++profiles;
+    const auto result = loadRobotProfileFile(entry.path());
+    EXPECT_TRUE(result.profile.has_value()) << entry.path();
+    for (const auto& d : result.diagnostics)
+      ADD_FAILURE() << d.toString();
+  }
+  EXPECT_GE(profiles, 7);
 }
 
 TEST(ThesisRobot, IsARegularOctagonOnTheWheelAxle) {
