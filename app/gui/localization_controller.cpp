@@ -74,8 +74,7 @@ LocalizationController::LocalizationController(SessionController& session,
   choice_ = new QComboBox(body);
   choice_->setObjectName(QStringLiteral("estimatorChoice"));
   choice_->addItem(tr("Off"));
-  for (EstimatorKind k :
-       {EstimatorKind::kStereoEkf, EstimatorKind::kDeadReckoning, EstimatorKind::kEncoderGyro})
+  for (EstimatorKind k : kAllEstimatorKinds)
     choice_->addItem(tr(displayName(k)), static_cast<int>(k));
   drag_button_ = new QPushButton(tr("Set Initial Pose…"), body);
   drag_button_->setCheckable(true);
@@ -110,8 +109,7 @@ LocalizationController::LocalizationController(SessionController& session,
   off->setChecked(true);
   kind_group_->addAction(off);
   connect(off, &QAction::triggered, this, [this] { setEstimator(std::nullopt); });
-  for (EstimatorKind k :
-       {EstimatorKind::kStereoEkf, EstimatorKind::kDeadReckoning, EstimatorKind::kEncoderGyro}) {
+  for (EstimatorKind k : kAllEstimatorKinds) {
     QAction* a = menu_->addAction(tr(displayName(k)));
     a->setCheckable(true);
     a->setData(static_cast<int>(k));
@@ -196,6 +194,7 @@ void LocalizationController::restart() {
   last_with_readings_ = {};
   warned_no_truth_ = false;
   warned_no_gyro_ = false;
+  warned_no_mouse_ = false;
   plots_->clear();
   if (kind_) {
     EstimatorRunnerConfig config;
@@ -258,6 +257,12 @@ void LocalizationController::onSample(const TelemetrySample& sample) {
                     tr("Localization: this robot has no gyro — the encoder + gyro filter runs "
                        "on the encoders alone (irgs-sim --localize encoder-gyro simulates one)"));
   }
+  if (!sample.mouse && *kind_ == EstimatorKind::kMouseOdometry && !warned_no_mouse_) {
+    warned_no_mouse_ = true;
+    session_.report(EventLevel::kWarning,
+                    tr("Localization: this robot reports no floor-sensor counts — the mouse "
+                       "odometry holds its estimate"));
+  }
   const EstimatorStep& step = runner_->feed(sample);
   if (!step.readings.empty())
     last_with_readings_ = step;
@@ -292,9 +297,10 @@ void LocalizationController::updateOverlay() {
       overlay.poses.push_back({tr("true"), kTruthColour, *step.truth, std::nullopt});
     if (*kind_ != EstimatorKind::kDeadReckoning)
       overlay.poses.push_back({tr("DR"), kDeadReckoningColour, step.dead_reckoning, std::nullopt});
-    const QString label = *kind_ == EstimatorKind::kStereoEkf     ? tr("EKF")
-                          : *kind_ == EstimatorKind::kEncoderGyro ? tr("enc+gyro")
-                                                                  : tr("DR");
+    const QString label = *kind_ == EstimatorKind::kStereoEkf       ? tr("EKF")
+                          : *kind_ == EstimatorKind::kEncoderGyro   ? tr("enc+gyro")
+                          : *kind_ == EstimatorKind::kMouseOdometry ? tr("mouse")
+                                                                    : tr("DR");
     overlay.poses.push_back(
         {label, *kind_ == EstimatorKind::kDeadReckoning ? kDeadReckoningColour : kEstimateColour,
          step.estimate, Eigen::Matrix3d(step.covariance)});

@@ -98,6 +98,7 @@ class LocalizationController : public QObject {
   EstimatorStep last_with_readings_;  // the matches shown until the next firing
   bool warned_no_truth_ = false;
   bool warned_no_gyro_ = false;
+  bool warned_no_mouse_ = false;
   bool stepping_ = false;
   bool drag_armed_ = false;
   std::optional<Vec2> drag_from_;

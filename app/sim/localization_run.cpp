@@ -144,9 +144,10 @@ std::string localizationMetricsJson(const LocalizationRunSpec& spec, const Local
                {"mean", jsonNumber(m.mean_nees)},
                {"fraction_within_95", m.nees_within_95},
                {"bound_95_3dof", kChi2Dof3P95}};
-  j["measurements"] = {{"kind", spec.kind == EstimatorKind::kEncoderGyro ? "gyro heading"
-                                : spec.kind == EstimatorKind::kStereoEkf ? "stereo echoes"
-                                                                         : "none"},
+  j["measurements"] = {{"kind", spec.kind == EstimatorKind::kEncoderGyro     ? "gyro heading"
+                                : spec.kind == EstimatorKind::kStereoEkf     ? "stereo echoes"
+                                : spec.kind == EstimatorKind::kMouseOdometry ? "floor-sensor counts"
+                                                                             : "none"},
                        {"received", m.readings},
                        {"accepted", m.accepted},
                        {"accepted_fraction", m.acceptedFraction()}};

@@ -82,7 +82,10 @@ live sonar grid is built, then writes the results.
                     separate the points instead of ';')
   --localize E      localization experiment with estimator E: ekf (stereo-sonar EKF of paper
                     000 on the map's walls, corners and edges), dr (encoder dead reckoning) or
-                    encoder-gyro (paper 001 feedback filter, AUTOGYRO-level gyro). The robot
+                    encoder-gyro (paper 001 feedback filter, AUTOGYRO-level gyro) or mouse
+                    (paper 004 two-sensor optical-mouse odometry; needs a robot with
+                    drive/mouse_sensors, e.g. --robot resources/robots/mouse_type20_004.json).
+                    The robot
                     drives the map's route graph (nodes in order, back to the first) at
                     0.3 m/s, or --route, or --script. Writes localization_metrics.json (RMS, max and final
                     errors of the estimate and of dead reckoning, NEES, accepted measurements)
@@ -154,8 +157,8 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
         return fail("--behaviour wants mapbuild, goal or coverage, got '" + value + "'");
       options.behaviour = value;
     } else if (arg == "--localize") {
-      if (value != "ekf" && value != "dr" && value != "encoder-gyro")
-        return fail("--localize wants ekf, dr or encoder-gyro, got '" + value + "'");
+      if (value != "ekf" && value != "dr" && value != "encoder-gyro" && value != "mouse")
+        return fail("--localize wants ekf, dr, encoder-gyro or mouse, got '" + value + "'");
       options.localize = value;
     } else if (arg == "--route") {
       std::string list = value;  // ';' or '/' between points ('/' needs no shell quoting)

@@ -47,13 +47,14 @@ const char* toString(EstimatorKind kind) {
       return "ekf";
     case EstimatorKind::kEncoderGyro:
       return "encoder-gyro";
+    case EstimatorKind::kMouseOdometry:
+      return "mouse";
   }
   return "?";
 }
 
 std::optional<EstimatorKind> parseEstimatorKind(std::string_view name) {
-  for (EstimatorKind k :
-       {EstimatorKind::kDeadReckoning, EstimatorKind::kStereoEkf, EstimatorKind::kEncoderGyro})
+  for (EstimatorKind k : kAllEstimatorKinds)
     if (name == toString(k))
       return k;
   return std::nullopt;
@@ -67,6 +68,8 @@ const char* displayName(EstimatorKind kind) {
       return "Stereo-sonar EKF (000)";
     case EstimatorKind::kEncoderGyro:
       return "Encoder + gyro filter (001)";
+    case EstimatorKind::kMouseOdometry:
+      return "Optical-mouse odometry (004)";
   }
   return "?";
 }
@@ -127,6 +130,19 @@ EstimatorRunner::EstimatorRunner(const WorldMap& map, const RobotProfile& profil
     s.half_baseline_m = config_.sonar.half_baseline_m;
   if (config_.kind == EstimatorKind::kEncoderGyro)
     validate(filterConfig(config_, wheelbase_m_));
+  if (config_.kind == EstimatorKind::kMouseOdometry) {
+    if (!config_.mouse_rig) {
+      MouseRigResult rig = mouseRigFromProfile(profile);
+      require(rig.rig.has_value(),
+              "optical-mouse odometry needs a profile with two floor sensors (" +
+                  (rig.diagnostics.empty()
+                       ? std::string("no rig")
+                       : rig.diagnostics.front().field + ": " + rig.diagnostics.front().message) +
+                  ")");
+      config_.mouse_rig = rig.rig;
+    }
+    validate(*config_.mouse_rig);
+  }
   reset(initial_estimate);
 }
 
@@ -137,6 +153,9 @@ void EstimatorRunner::reset(const Pose2& initial_estimate) {
   encoder_gyro_.reset();
   if (config_.kind == EstimatorKind::kEncoderGyro)
     encoder_gyro_.emplace(filterConfig(config_, wheelbase_m_), initial_);
+  mouse_.reset();
+  if (config_.kind == EstimatorKind::kMouseOdometry)
+    mouse_.emplace(*config_.mouse_rig, initial_);
   echo_rng_ = SimRandom::stream(config_.seed, kEchoStream);
   has_baseline_ = false;
   next_echo_s_ = -std::numeric_limits<double>::infinity();  // fire at the first sample
@@ -189,6 +208,8 @@ const EstimatorStep& EstimatorRunner::feed(const TelemetrySample& sample) {
       step_.encoder_gyro = encoder_gyro_->step({d_right, d_left, rate, dt});
       if (step_.encoder_gyro->status == DrStepStatus::kUpdated)
         ++metrics_.accepted;
+    } else if (mouse_) {
+      predictFromMice(sample);
     } else if (ekf_.predictDiffDrive(d_left, d_right, wheelbase_m_, config_.process) !=
                PredictStatus::kApplied) {
       step_.note = "prediction rejected (non-finite increment)";
@@ -209,6 +230,25 @@ const EstimatorStep& EstimatorRunner::feed(const TelemetrySample& sample) {
   }
   finishStep(sample);
   return step_;
+}
+
+void EstimatorRunner::predictFromMice(const TelemetrySample& sample) {
+  if (!sample.mouse) {
+    step_.note = "no floor-sensor reading: the estimate holds";
+    return;
+  }
+  ++metrics_.readings;
+  step_.mouse_motion = mouse_->update(sample.mouse->right, sample.mouse->left);
+  const TwoSensorMotion& motion = *step_.mouse_motion;
+  if (motion.status == MouseMotionStatus::kOk)
+    ++metrics_.accepted;
+  else
+    step_.note = std::string("floor sensors: ") + toString(motion.status);
+  // Paper 004 gives no noise model: the covariance grows as for encoder dead reckoning over the
+  // same motion (the centre's chord and rotation as equivalent wheel travels).
+  const double travel = std::copysign(motion.centre.norm(), motion.centre.x());
+  const double half_turn = 0.5 * motion.dtheta_rad * wheelbase_m_;
+  ekf_.predictDiffDrive(travel - half_turn, travel + half_turn, wheelbase_m_, config_.process);
 }
 
 void EstimatorRunner::fireStereo(const Pose2& truth) {
@@ -237,6 +277,9 @@ void EstimatorRunner::currentEstimate() {
     step_.estimate = encoder_gyro_->pose();
     // The error states after feedback: (dx, dy, dpsi) is the pose error covariance.
     step_.covariance = encoder_gyro_->covariance().block<3, 3>(kDrDx, kDrDx);
+  } else if (mouse_) {
+    step_.estimate = mouse_->pose();
+    step_.covariance = ekf_.covariance();
   } else {
     step_.estimate = ekf_.pose();
     step_.covariance = ekf_.covariance();

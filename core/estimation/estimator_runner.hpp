@@ -9,7 +9,10 @@
 //     and updated with stereo-sonar echoes simulated on the map from the TRUE pose
 //     (StereoEchoSimulator, own seeded stream), sensors fired every stereo_period_s;
 //   * kEncoderGyro: the paper-001 indirect feedback filter (encoder_gyro_filter.hpp) on the
-//     encoder increments and the sample's gyro reading, calibrated with gyro_calibration.
+//     encoder increments and the sample's gyro reading, calibrated with gyro_calibration;
+//   * kMouseOdometry: the paper-004 two-sensor optical-mouse odometry (mouse_odometry.hpp) on the
+//     sample's floor-sensor counts, the rig from the profile's drive/mouse_sensors; its
+//     covariance is the encoder DR noise model applied to the same motion (004 gives none).
 //
 // Every sample is used once, in order: the encoder increment is the tick difference to the
 // previous sample times the profile's metres per tick (nominal model, like the robot's own
@@ -27,6 +30,7 @@
 #include "core/estimation/ekf_localizer.hpp"
 #include "core/estimation/encoder_gyro_filter.hpp"
 #include "core/estimation/gyro_calibration.hpp"
+#include "core/estimation/mouse_odometry.hpp"
 #include "core/estimation/stereo_echo_sim.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
@@ -35,9 +39,12 @@
 
 namespace irgs {
 
-enum class EstimatorKind { kDeadReckoning, kStereoEkf, kEncoderGyro };
+enum class EstimatorKind { kDeadReckoning, kStereoEkf, kEncoderGyro, kMouseOdometry };
+inline constexpr EstimatorKind kAllEstimatorKinds[] = {
+    EstimatorKind::kStereoEkf, EstimatorKind::kDeadReckoning, EstimatorKind::kEncoderGyro,
+    EstimatorKind::kMouseOdometry};
 
-// "dr", "ekf", "encoder-gyro" (the irgs-sim --localize names).
+// "dr", "ekf", "encoder-gyro", "mouse" (the irgs-sim --localize names).
 const char* toString(EstimatorKind kind);
 std::optional<EstimatorKind> parseEstimatorKind(std::string_view name);
 // Human-readable, for menus and plots: "Dead reckoning", "Stereo-sonar EKF (000)", ...
@@ -65,7 +72,8 @@ struct EstimatorRunnerConfig {
   std::uint64_t seed = 1;                           // echo noise and dropouts
   EncoderGyroFilterConfig encoder_gyro;             // wheelbase_m is taken from the profile
   std::optional<GyroCalibration> gyro_calibration;  // empty: the raw gyro rate is used
-  double max_step_travel_m = 1.0;  // a larger tick jump between samples is a discontinuity
+  double max_step_travel_m = 1.0;     // a larger tick jump between samples is a discontinuity
+  std::optional<MouseRig> mouse_rig;  // kMouseOdometry; empty: the profile's drive/mouse_sensors
 };
 
 // Throws std::invalid_argument for non-finite or non-positive stddevs/periods, no sensors, or
@@ -87,10 +95,11 @@ struct EstimatorStep {
   bool predicted = false;  // false for the baseline sample and after a discontinuity
   std::optional<Pose2> truth;
   Pose2 estimate;
-  LocCov covariance = LocCov::Zero();         // of (x, y, theta), world frame
-  Pose2 dead_reckoning;                       // encoder DR through the nominal model, same start
-  std::vector<StereoReadingRecord> readings;  // kStereoEkf: the readings taken at this sample
-  std::optional<DrStepResult> encoder_gyro;   // kEncoderGyro: the filter's step
+  LocCov covariance = LocCov::Zero();           // of (x, y, theta), world frame
+  Pose2 dead_reckoning;                         // encoder DR through the nominal model, same start
+  std::vector<StereoReadingRecord> readings;    // kStereoEkf: the readings taken at this sample
+  std::optional<DrStepResult> encoder_gyro;     // kEncoderGyro: the filter's step
+  std::optional<TwoSensorMotion> mouse_motion;  // kMouseOdometry: this interval's inference
   // Error estimate - truth (x, y, wrapped theta) and NEES e' P^-1 e, when truth is known and P
   // is positive definite.
   std::optional<LocState> error;
@@ -114,8 +123,9 @@ struct EstimatorMetrics {
   std::int64_t nees_steps = 0;
   double mean_nees = 0.0;
   double nees_within_95 = 0.0;  // fraction of nees_steps below chi2(3) 95 % = 7.815
-  std::int64_t readings = 0;    // stereo echoes received (kStereoEkf) / gyro samples
-  std::int64_t accepted = 0;    // applied updates
+  // Stereo echoes received (kStereoEkf) / gyro samples / floor-sensor readings (kMouseOdometry).
+  std::int64_t readings = 0;
+  std::int64_t accepted = 0;  // applied updates / readings with both sensors tracking
   double acceptedFraction() const {
     return readings > 0 ? static_cast<double>(accepted) / static_cast<double>(readings) : 0.0;
   }
@@ -125,8 +135,8 @@ inline constexpr double kChi2Dof3P95 = 7.815;
 
 class EstimatorRunner {
  public:
-  // Throws std::invalid_argument for an invalid config, a non-finite initial pose, or a profile
-  // with a non-positive wheelbase or metres per tick.
+  // Throws std::invalid_argument for an invalid config, a non-finite initial pose, a profile
+  // with a non-positive wheelbase or metres per tick, or (kMouseOdometry) no mouse rig.
   EstimatorRunner(const WorldMap& map, const RobotProfile& profile, const Pose2& initial_estimate,
                   EstimatorRunnerConfig config);
 
@@ -149,6 +159,7 @@ class EstimatorRunner {
  private:
   void finishStep(const TelemetrySample& sample);
   void fireStereo(const Pose2& truth);
+  void predictFromMice(const TelemetrySample& sample);
   void currentEstimate();
 
   EstimatorRunnerConfig config_;
@@ -160,6 +171,7 @@ class EstimatorRunner {
 
   EkfLocalizer ekf_;  // kStereoEkf and kDeadReckoning (prediction only)
   std::optional<EncoderGyroFilter> encoder_gyro_;
+  std::optional<MouseOdometry> mouse_;  // kMouseOdometry
   SimRandom echo_rng_;
 
   bool has_baseline_ = false;

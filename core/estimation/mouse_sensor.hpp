@@ -19,6 +19,7 @@
 #include <cstdint>
 
 #include "core/geometry/types.hpp"
+#include "core/robot/mouse_counts.hpp"
 #include "core/sim/random.hpp"
 
 namespace irgs {
@@ -45,21 +46,6 @@ struct MouseMount {
   double phi_rad = 0.0;
 
   Vec2 position() const { return {x_m, y_m}; }
-};
-
-enum class MouseStatus {
-  kTracking,   // counts are valid
-  kSaturated,  // faster than max_speed_mps: counts are clipped (under-reported)
-  kLifted,     // floor gap above max_lift_m: no counts
-};
-
-const char* toString(MouseStatus status);
-
-// Counts accumulated over one sampling interval, in the sensor's axes.
-struct MouseCounts {
-  std::int64_t dx = 0;
-  std::int64_t dy = 0;
-  MouseStatus status = MouseStatus::kTracking;
 };
 
 // Single-sensor motion (1)-(3): direction alpha of the sensor's motion in its frame and the

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry/types.hpp"
+#include "core/robot/mouse_counts.hpp"
 
 namespace irgs {
 
@@ -47,6 +48,9 @@ struct TelemetrySample {
   // The robot reports its drive blocked: commanded but not moving (ARCOS SIP stall bits).
   // For robots without bumpers (Pioneers, AmigoBots) this is the only sign of a collision.
   bool drive_stalled = false;
+  // Two optical floor sensors (paper 004): counts over the interval since the previous sample,
+  // present when the robot has them.
+  std::optional<MouseReading> mouse;
 };
 
 // The body touches something: a bumper is pressed or the drive reports a stall.

@@ -7,6 +7,10 @@ SimConfig typicalSimConfig(SimConfig base) {
   base.odometry.right_scale = 0.9995;
   base.odometry.wheelbase_scale = 1.005;
   base.odometry.slip_stddev = 0.001;
+  // Floor sensors (mouse profiles only): [A] 0.5 % common surface scale error, 1 % random per
+  // axis and interval, as in docs/localization.md's drift table (004 gives no figures).
+  base.mouse_noise.scale_error = 0.005;
+  base.mouse_noise.relative_stddev = 0.01;
   return base;
 }
 

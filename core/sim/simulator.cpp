@@ -6,7 +6,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "core/estimation/mouse_odometry.hpp"
 #include "core/sim/diff_drive.hpp"
 #include "core/sim/random.hpp"
 
@@ -19,6 +21,7 @@ constexpr std::uint64_t kMotionStream = 1;
 constexpr std::uint64_t kSonarStream = 2;
 constexpr std::uint64_t kProximityStream = 3;
 constexpr std::uint64_t kGyroStream = 4;
+constexpr std::uint64_t kMouseStream = 5;
 
 // Bisection steps when a step would penetrate: the remaining gap is below step * 2^-16.
 constexpr int kCollisionBisections = 16;
@@ -125,6 +128,9 @@ struct Simulator::Impl {
   SimRandom sonar_rng;
   SimRandom proximity_rng;
   std::optional<GyroSimulator> gyro;  // present when config.gyro.enabled
+  // The right and left floor sensors, present when the profile has a mouse rig.
+  std::optional<std::pair<MouseSensorSimulator, MouseSensorSimulator>> mice;
+  SimRandom mouse_rng;
 
   Pose2 true_pose;
   Pose2 odom_pose;
@@ -159,10 +165,12 @@ struct Simulator::Impl {
         config(c),
         motion_rng(SimRandom::stream(c.seed, kMotionStream)),
         sonar_rng(SimRandom::stream(c.seed, kSonarStream)),
-        proximity_rng(SimRandom::stream(c.seed, kProximityStream)) {
+        proximity_rng(SimRandom::stream(c.seed, kProximityStream)),
+        mouse_rng(SimRandom::stream(c.seed, kMouseStream)) {
     validate(profile, config);
     if (config.gyro.enabled)
       gyro.emplace(config.gyro, SimRandom::stream(c.seed, kGyroStream));
+    makeMice();
     require(
         std::isfinite(map.start.x) && std::isfinite(map.start.y) && std::isfinite(map.start.theta),
         "the map's start pose is not finite");
@@ -385,7 +393,36 @@ struct Simulator::Impl {
     }
   }
 
+  void makeMice() {
+    mice.reset();
+    if (!config.mouse_sensors || !profile.drive.extra.contains("mouse_sensors"))
+      return;
+    MouseRigResult rig = mouseRigFromProfile(profile);
+    if (!rig.rig) {
+      const Diagnostic& d = rig.diagnostics.front();
+      throw std::invalid_argument("robot profile " + d.field + ": " + d.message);
+    }
+    require(std::isfinite(config.mouse_floor_gap_m) && config.mouse_floor_gap_m >= 0.0,
+            "mouse_floor_gap_m must be finite and >= 0");
+    mice.emplace(MouseSensorSimulator(rig.rig->spec, rig.rig->right, config.mouse_noise),
+                 MouseSensorSimulator(rig.rig->spec, rig.rig->left, config.mouse_noise));
+  }
+
+  void readMice(const Pose2& before, TelemetrySample& sample) {
+    if (!mice) {
+      sample.mouse.reset();
+      return;
+    }
+    const BodyIncrement increment = incrementBetween(before, true_pose);
+    const double gap = config.mouse_floor_gap_m;
+    MouseReading reading;
+    reading.right = mice->first.sample(increment, config.dt_s, gap, mouse_rng);
+    reading.left = mice->second.sample(increment, config.dt_s, gap, mouse_rng);
+    sample.mouse = reading;
+  }
+
   void step(TelemetrySample& sample) {
+    const Pose2 before = true_pose;
     move();
     ++steps;
     const double now = time();
@@ -409,6 +446,7 @@ struct Simulator::Impl {
       sample.gyro = gyro->read(true_velocity.angular_radps, now, config.dt_s);
     else
       sample.gyro.reset();
+    readMice(before, sample);
   }
 };
 

@@ -25,6 +25,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/estimation/mouse_sensor.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
 #include "core/sim/gyro_sim.hpp"
@@ -65,6 +66,12 @@ struct SimConfig {
   // A yaw rate gyro (gyro_sim.hpp), read every step from its own random stream. Disabled by
   // default: then samples carry no GyroReading and every other output is unchanged.
   GyroErrorModel gyro;
+  // Two optical floor (mouse) sensors of paper 004, simulated when the profile has a
+  // drive/mouse_sensors rig (and this is true), read every step from their own random stream;
+  // without a rig samples carry no MouseReading and every other output is unchanged.
+  bool mouse_sensors = true;
+  MouseNoise mouse_noise;
+  double mouse_floor_gap_m = 0.0;  // sensor-to-floor gap; above the rig's max_lift_m: no counts
 };
 
 class Simulator {

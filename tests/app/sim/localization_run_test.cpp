@@ -133,7 +133,7 @@ TEST(LocalizationRun, TheCommandLineTakesTheEstimatorAndRefusesNonsense) {
   EXPECT_EQ(ok.options->localize, "encoder-gyro");
   const auto bad = parse({"--map", "m.json", "--out", "o", "--localize", "kalman"});
   EXPECT_FALSE(bad.options);
-  EXPECT_NE(bad.error.find("ekf, dr or encoder-gyro"), std::string::npos);
+  EXPECT_NE(bad.error.find("ekf, dr, encoder-gyro or mouse"), std::string::npos);
   EXPECT_FALSE(
       parse({"--map", "m.json", "--out", "o", "--localize", "ekf", "--behaviour", "coverage"})
           .options);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,13 @@
 
 namespace irgs {
 namespace {
+
+RobotProfile mouseRobot() {
+  auto loaded = loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) +
+                                     "/resources/robots/mouse_type20_004.json");
+  EXPECT_TRUE(loaded.profile.has_value());
+  return *loaded.profile;
+}
 
 RobotProfile thesisRobot() {
   auto loaded =
@@ -66,9 +74,9 @@ SimConfig drifty(std::uint64_t seed) {
 }
 
 TEST(EstimatorRunner, NamesRoundTripAndUnknownNamesAreRejected) {
-  for (EstimatorKind k :
-       {EstimatorKind::kDeadReckoning, EstimatorKind::kStereoEkf, EstimatorKind::kEncoderGyro})
+  for (EstimatorKind k : kAllEstimatorKinds)
     EXPECT_EQ(parseEstimatorKind(toString(k)), k);
+  EXPECT_EQ(parseEstimatorKind("mouse"), EstimatorKind::kMouseOdometry);
   EXPECT_FALSE(parseEstimatorKind("EKF").has_value());
   EXPECT_FALSE(parseEstimatorKind("").has_value());
 }
@@ -245,6 +253,56 @@ TEST(EstimatorRunner, TheEncoderGyroFilterKeepsTheHeadingBetterThanEncoders) {
   ASSERT_TRUE(runner.lastStep().encoder_gyro.has_value());
   EXPECT_LT(m.final_heading_error_rad, 0.5 * m.dr_final_heading_error_rad);
   EXPECT_LT(m.final_position_error_m, m.dr_final_position_error_m);
+}
+
+}  // namespace
+}  // namespace irgs
+
+namespace irgs {
+namespace {
+
+TEST(EstimatorRunner, MouseOdometryNeedsAProfileWithFloorSensors) {
+  const WorldMap map;
+  EstimatorRunnerConfig config;
+  config.kind = EstimatorKind::kMouseOdometry;
+  try {
+    EstimatorRunner runner(map, thesisRobot(), map.start, config);
+    FAIL() << "the thesis robot has no floor sensors";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("/drive/mouse_sensors"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(EstimatorRunner(map, mouseRobot(), map.start, config));
+}
+
+// The Type (2,0) robot of 004 in the Simulator with its two floor sensors: the mouse odometry
+// does not see the wheels' radius and wheelbase errors, so on the same run it ends far closer to
+// the truth than the encoder dead reckoning, and its readings are all counted.
+TEST(EstimatorRunner, MouseOdometryInTheSimulatorBeatsTheEncodersOnTheSameRun) {
+  WorldMap map;  // an open floor: the mice need no walls
+  map.start = {0.0, 0.0, 0.0};
+  SimConfig sim_config = drifty(3);
+  sim_config.mouse_noise.scale_error = 0.005;  // [A] as in docs/localization.md
+  sim_config.mouse_noise.relative_stddev = 0.01;
+  Simulator sim(map, mouseRobot(), sim_config);
+  EstimatorRunnerConfig config;
+  config.kind = EstimatorKind::kMouseOdometry;
+  EstimatorRunner runner(map, mouseRobot(), map.start, config);
+  const std::vector<Vec2> square = {{2, 0}, {2, 2}, {0, 2}, {0, 0}, {2, 0}, {2, 2}, {0, 2}, {0, 0}};
+  const long steps = drive(sim, runner, square);
+  const EstimatorMetrics& m = runner.metrics();
+  EXPECT_GT(m.distance_m, 15.0);
+  // One floor-sensor reading per simulator step but the baseline (drive() also counts the
+  // waypoint switches, one per waypoint, as steps).
+  EXPECT_EQ(m.readings, steps - static_cast<long>(square.size()) - 1);
+  EXPECT_GT(m.accepted, m.readings * 99 / 100);
+  std::printf("mouse RMS %.3f m final %.3f m; encoders RMS %.3f m final %.3f m over %.1f m\n",
+              m.rms_position_error_m, m.final_position_error_m, m.dr_rms_position_error_m,
+              m.dr_final_position_error_m, m.distance_m);
+  EXPECT_GT(m.dr_rms_position_error_m, 0.1);
+  EXPECT_LT(m.rms_position_error_m, 0.5 * m.dr_rms_position_error_m);
+  // The covariance grew with the distance driven.
+  EXPECT_GT(runner.lastStep().covariance(kLocX, kLocX), 1e-4);
+  ASSERT_TRUE(runner.lastStep().mouse_motion.has_value());
 }
 
 }  // namespace
