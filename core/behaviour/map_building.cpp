@@ -896,6 +896,31 @@ void MapBuildingBehaviour::rangeToRoomWalls(const TelemetrySample& sample) {
   }
 }
 
+// A turn or back-up of the behaviour's own (interior exploration) that is blocked — in contact
+// for the wall follower's blocked_s, the wheels stalled — would wait forever for progress that
+// cannot come: a blocked turn backs up first, a blocked back-up gives up and re-plans.
+void MapBuildingBehaviour::escapeBlockedMove(const TelemetrySample& sample, const Pose2& pose) {
+  const bool turning_or_backing =
+      move_ == Move::kTurn || move_ == Move::kFaceObstacle || move_ == Move::kBackUp;
+  if (!inContact(sample) || !turning_or_backing) {
+    contact_since_s_.reset();
+    return;
+  }
+  if (!contact_since_s_) {
+    contact_since_s_ = sample.time_s;
+    return;
+  }
+  if (sample.time_s - *contact_since_s_ < config_.follow.blocked_s)
+    return;
+  contact_since_s_.reset();
+  if (move_ == Move::kBackUp) {
+    move_ = Move::kNone;
+  } else {
+    move_ = Move::kBackUp;
+    move_start_ = pose.position();
+  }
+}
+
 VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
   now_s_ = raw.time_s;
   if (phase_ == MapBuildingPhase::kDone || phase_ == MapBuildingPhase::kFailed)
@@ -941,6 +966,7 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
   if (phase_ == MapBuildingPhase::kScan)
     scan_turned_rad_ += std::abs(wrapAngle(pose.theta - last_pose_.theta));
 
+  escapeBlockedMove(sample, pose);
   VelocityCommand cmd;
   if (sample.time_s - start_time_s_ > config_.max_time_s) {
     cmd = fail("time budget of " + std::to_string(static_cast<int>(config_.max_time_s)) +

@@ -168,6 +168,7 @@ class MapBuildingBehaviour : public Behaviour {
   VelocityCommand followStep(const TelemetrySample& sample, const Pose2& pose);
   VelocityCommand onLoopClosed(const Pose2& pose, std::size_t from_index);
   VelocityCommand interior(const TelemetrySample& sample, const Pose2& pose);
+  void escapeBlockedMove(const TelemetrySample& sample, const Pose2& pose);
   VelocityCommand startFollowing(const Pose2& pose, MapBuildingPhase phase);
   std::optional<Target> chooseTarget(const Pose2& pose);
   bool explained(const Vec2& p) const;
@@ -254,6 +255,7 @@ class MapBuildingBehaviour : public Behaviour {
 
   // Interior moves.
   Move move_ = Move::kNone;
+  std::optional<double> contact_since_s_;  // in contact during a turn or back-up, since
   double move_heading_ = 0.0;
   Vec2 move_start_ = Vec2::Zero();
   double move_length_m_ = 0.0;

@@ -194,6 +194,26 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
     hold_heading_ = pose.theta;
     message_ = "bumper: back up";
   }
+  // A turn or a back-up that is blocked would wait forever for progress that cannot come.
+  const bool turning_or_backing =
+      mode_ == WallFollowMode::kBackUp || mode_ == WallFollowMode::kTurn;
+  if (!inContact(sample) || !turning_or_backing) {
+    contact_since_s_.reset();
+  } else if (!contact_since_s_) {
+    contact_since_s_ = sample.time_s;
+  } else if (sample.time_s - *contact_since_s_ >= config_.blocked_s) {
+    contact_since_s_.reset();
+    ++bumps_;
+    if (mode_ == WallFollowMode::kTurn) {
+      mode_ = WallFollowMode::kBackUp;
+      leg_start_ = pose.position();
+      hold_heading_ = pose.theta;
+      message_ = "blocked while turning: back up";
+    } else {
+      message_ = "blocked while backing up: turn away";
+      return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
+    }
+  }
 
   const auto front = view_.frontDistance();
   const bool wall_ahead = front && *front < config_.distance_m + config_.front_margin_m;

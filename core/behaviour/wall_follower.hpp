@@ -30,6 +30,9 @@ struct WallFollowConfig {
   double max_approach_rad = degToRad(30.0);  // (d) steepest approach back to the set distance
   double heading_gain = 2.0;                 // omega = gain * heading error (1/s)
   double back_up_m = 0.08;                   // after a bumper hit
+  // In contact this long while turning or backing up: the body is blocked (a corner on an
+  // obstacle, the wheels stalled); back up instead of turning, or turn instead of backing up.
+  double blocked_s = 1.0;
 };
 
 // What is wrong with the config (non-positive distances or speeds, valid distance not beyond
@@ -95,6 +98,7 @@ class WallFollower : public Behaviour {
   double now_s_ = 0.0;
   std::string message_;
   std::optional<double> wall_angle_;
+  std::optional<double> contact_since_s_;  // in contact while turning or backing up, since
 };
 
 }  // namespace irgs
