@@ -25,9 +25,14 @@ LinkedRobotHandle* LinkController::handle() const {
   return dynamic_cast<LinkedRobotHandle*>(session_.robot());
 }
 
+comms::ArcosRobot* LinkController::arcosRobot() const {
+  return dynamic_cast<comms::ArcosRobot*>(session_.robot());
+}
+
 QString LinkController::url() const {
-  const LinkedRobotHandle* linked = handle();
-  return linked != nullptr ? QString::fromStdString(linked->url()) : QString();
+  if (const LinkedRobotHandle* linked = handle())
+    return QString::fromStdString(linked->url());
+  return arcosRobot() != nullptr ? connected_url_ : QString();
 }
 
 QString LinkController::connectTo(const QString& url) {
@@ -39,13 +44,17 @@ QString LinkController::connectTo(const QString& url) {
   if (!linked())
     simulator_factory_ = session_.robotFactory();
   const std::string text = parsed.url->toString();
+  connected_url_ = QString::fromStdString(text);
   RobotFactory factory = [io = io_, link_url = *parsed.url, text, tap = frame_tap_](
-                             const WorldMap&,
+                             const WorldMap& world,
                              const RobotProfile& profile) -> std::unique_ptr<Robot> {
     if (comms::isArcosUrl(link_url)) {
-      // A Pioneer over ARCOS (docs/pioneer.md): a plain Robot that keeps the io thread alive;
-      // the MAVLink link panel does not apply to it.
-      comms::ArcosRobot::OpenResult arcos = comms::ArcosRobot::open(io, link_url, profile);
+      // A Pioneer over ARCOS (docs/pioneer.md): a plain Robot that keeps the io thread alive.
+      // ARCOS counts from (0, 0, 0) at OPEN: the robot is taken to stand at the map's start
+      // pose, so its sonar map lands on the map being shown.
+      comms::ArcosRobotConfig config;
+      config.start_pose = world.start;
+      comms::ArcosRobot::OpenResult arcos = comms::ArcosRobot::open(io, link_url, profile, config);
       if (!arcos.robot)
         throw std::runtime_error(arcos.error);
       return std::unique_ptr<Robot>(std::move(arcos.robot));
@@ -83,6 +92,8 @@ void LinkController::disconnectLink() {
 }
 
 widgets::LinkHealth LinkController::health() const {
+  if (const comms::ArcosRobot* arcos = arcosRobot())
+    return toLinkHealth(arcos->linkStats(), QString::fromStdString(arcos->describe()));
   LinkedRobotHandle* linked = handle();
   if (linked == nullptr)
     return {};
@@ -90,21 +101,32 @@ widgets::LinkHealth LinkController::health() const {
 }
 
 TelemetryRates LinkController::rates() const {
+  if (const comms::ArcosRobot* arcos = arcosRobot()) {
+    const comms::ArcosTelemetryRates r = arcos->telemetryRates();
+    TelemetryRates rates;
+    rates.samples = r.samples;
+    rates.sonar_readings = r.sonar_readings;
+    rates.odometry_hz = r.sample_hz;
+    rates.sonar_hz = r.sonar_hz;
+    rates.sonar_readings_per_s = r.sonar_readings_per_s;
+    return rates;
+  }
   const LinkedRobotHandle* linked = handle();
   return linked != nullptr ? linked->rates() : TelemetryRates{};
 }
 
 void LinkController::poll() {
   LinkedRobotHandle* linked = handle();
-  if ((linked != nullptr) != was_linked_) {
-    was_linked_ = linked != nullptr;
+  if (this->linked() != was_linked_) {
+    was_linked_ = this->linked();
     emit linkedChanged(was_linked_);
   }
-  // An ARCOS robot has no MAVLink health panel, but its events (the handshake's robot name and
-  // model, link loss, stalls) belong in the console all the same.
-  if (auto* arcos = dynamic_cast<comms::ArcosRobot*>(session_.robot())) {
+  // An ARCOS robot's events (the handshake's robot name and model, link loss, stalls) and its
+  // link state and byte counts, as for MAVLink.
+  if (auto* arcos = arcosRobot()) {
     for (const comms::LinkEvent& event : arcos->takeEvents())
       session_.report(levelOfSeverity(event.severity), formatLinkEvent(event));
+    emit healthChanged(health());
   }
   if (linked == nullptr)
     return;

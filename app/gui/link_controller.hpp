@@ -17,8 +17,9 @@
 #include "widgets/link/link_health_panel.hpp"
 
 namespace irgs::comms {
+class ArcosRobot;
 class IoThread;
-}
+}  // namespace irgs::comms
 
 namespace irgs::gui {
 
@@ -41,10 +42,12 @@ class LinkController : public QObject {
   // an empty function: none.
   void setFrameTap(comms::FrameTap tap) { frame_tap_ = std::move(tap); }
 
-  bool linked() const { return handle() != nullptr; }
+  // A robot behind a link: MAVLink (handle()) or ARCOS (arcosRobot()).
+  bool linked() const { return handle() != nullptr || arcosRobot() != nullptr; }
   QString url() const;
   // The session's robot when it is a linked one, else null.
   LinkedRobotHandle* handle() const;
+  comms::ArcosRobot* arcosRobot() const;
   widgets::LinkHealth health() const;
   TelemetryRates rates() const;
 
@@ -71,6 +74,7 @@ class LinkController : public QObject {
   RobotFactory simulator_factory_;
   comms::FrameTap frame_tap_;
   QTimer poll_timer_;
+  QString connected_url_;  // the URL of the last connectTo()
   bool was_linked_ = false;
 };
 

@@ -50,25 +50,14 @@ struct LinkSummary {
   std::uint32_t reconnects = 0;
 };
 
-LinkSummary summarise(const LinkController& link, SessionController& session) {
+LinkSummary summarise(const LinkController& link) {
   LinkSummary summary;
-  if (link.linked()) {
+  if (link.linked()) {  // MAVLink or ARCOS: the controller speaks for both
     const widgets::LinkHealth health = link.health();
     summary.state = widgets::LinkHealthPanel::stateText(health.state);
     summary.rates = link.rates();
     summary.link_losses = health.link_losses;
     summary.reconnects = health.reconnect_attempts;
-  } else if (const auto* arcos = dynamic_cast<const comms::ArcosRobot*>(session.robot())) {
-    const comms::LinkStats stats = arcos->linkStats();
-    summary.state = widgets::LinkHealthPanel::stateText(toHealthState(stats.state));
-    const comms::ArcosTelemetryRates rates = arcos->telemetryRates();
-    summary.rates.samples = rates.samples;
-    summary.rates.sonar_readings = rates.sonar_readings;
-    summary.rates.odometry_hz = rates.sample_hz;
-    summary.rates.sonar_hz = rates.sonar_hz;
-    summary.rates.sonar_readings_per_s = rates.sonar_readings_per_s;
-    summary.link_losses = stats.link_losses;
-    summary.reconnects = stats.reconnect_attempts;
   }
   return summary;
 }
@@ -238,7 +227,7 @@ PlanningController* StdinControl::planning() const {
 }
 
 QString StdinControl::statusLine() const {
-  const LinkSummary link = summarise(link_.controller(), session_);
+  const LinkSummary link = summarise(link_.controller());
   const TelemetryRates& rates = link.rates;
   QString line = QStringLiteral(
                      "status wall_s=%1 link=%2 samples=%3 odom_hz=%4 sonar_hz=%5 "

@@ -61,6 +61,18 @@ ArcosVelocityArguments arcosVelocityArguments(const VelocityCommand& command,
           static_cast<int>(std::clamp(std::round(radToDeg(w)), -max, max))};
 }
 
+namespace {
+
+ArcosTelemetryConverter makeConverter(RobotProfile profile, ArcosParams params,
+                                      const std::optional<Pose2>& start_pose) {
+  ArcosTelemetryConverter converter(std::move(profile), std::move(params));
+  if (start_pose)
+    converter.setAnchor(*start_pose);
+  return converter;
+}
+
+}  // namespace
+
 struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   Impl(IoThread& io_thread, RobotProfile robot_profile, ArcosParams arcos_params,
        ArcosRobotConfig robot_config)
@@ -68,7 +80,8 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
         config(robot_config),
         profile(robot_profile),
         session(robot_config.session),
-        converter(std::move(robot_profile), std::move(arcos_params)),
+        converter(makeConverter(std::move(robot_profile), std::move(arcos_params),
+                                robot_config.start_pose)),
         timer(io_thread.context()),
         epoch(std::chrono::steady_clock::now()),
         backoff_s(robot_config.reconnect_initial_s) {}

@@ -33,6 +33,9 @@ namespace irgs::comms {
 
 struct ArcosRobotConfig {
   arcos::ArcosSessionConfig session{};
+  // Where the robot stands in the map frame when the link first opens (ArcosTelemetryConverter:
+  // ARCOS counts from (0, 0, 0) at OPEN). Empty: the robot's own odometry frame.
+  std::optional<Pose2> start_pose{};
   double tick_s = 0.02;              // session clock resolution
   double command_period_s = 0.1;     // VEL + RVEL repeat period while moving (10 Hz)
   double reconnect_initial_s = 0.5;  // transport reopen backoff after a failure

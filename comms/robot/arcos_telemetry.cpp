@@ -35,9 +35,12 @@ void ArcosTelemetryConverter::reset() {
   x_.reset();
   y_.reset();
   started_ = false;
+  if (anchor_ && last_pose_)
+    anchor_ = last_pose_;  // continue where the robot was last seen
 }
 
 TelemetrySample ArcosTelemetryConverter::convert(const arcos::StandardSip& sip, double time_s) {
+  const bool first = !started_;
   if (!started_) {
     x0_ = signed15(sip.x_raw);
     y0_ = signed15(sip.y_raw);
@@ -47,9 +50,16 @@ TelemetrySample ArcosTelemetryConverter::convert(const arcos::StandardSip& sip, 
   const double y_units = static_cast<double>(y0_ + y_.update(sip.y_raw));
   TelemetrySample s;
   s.time_s = time_s;
-  s.odometry_pose = {x_units * params_.dist_conv_mm / 1000.0,
-                     y_units * params_.dist_conv_mm / 1000.0,
-                     wrapAngle(sip.theta_raw * params_.angle_conv_rad)};
+  const Pose2 raw{x_units * params_.dist_conv_mm / 1000.0, y_units * params_.dist_conv_mm / 1000.0,
+                  wrapAngle(sip.theta_raw * params_.angle_conv_rad)};
+  if (anchor_ && first) {
+    // to_map ⊕ raw = anchor: to_map = anchor ⊕ raw^-1.
+    const double c = std::cos(raw.theta), sn = std::sin(raw.theta);
+    const Pose2 raw_inverse{-(c * raw.x + sn * raw.y), sn * raw.x - c * raw.y, -raw.theta};
+    to_map_ = anchor_->compose(raw_inverse);
+  }
+  s.odometry_pose = to_map_.compose(raw);
+  last_pose_ = s.odometry_pose;
   const double left_mmps = sip.left_velocity * params_.vel_conv_mmps;
   const double right_mmps = sip.right_velocity * params_.vel_conv_mmps;
   s.measured_velocity.linear_mps = 0.5 * (left_mmps + right_mmps) / 1000.0;

@@ -14,8 +14,14 @@
 //   bumpers   front bits (9-15) then rear bits (1-7), in order, onto the profile's bumpers whose
 //             normal points forward (cos >= 0) and backward respectively
 // Encoder ticks are not in the standard SIP; samples carry 0 ticks.
+//
+// Frame: with an anchor (setAnchor) the poses are re-expressed in the map frame by the rigid
+// transform that puts the first SIP at the anchor, and after a reconnection (reset(): ARCOS
+// counts from zero again at OPEN) by the one that puts the new first SIP where the last one
+// was, so the map does not jump when a Bluetooth link drops. Without one, poses are ARCOS's.
 
 #include <cstdint>
+#include <optional>
 
 #include "comms/arcos/arcos_sip.hpp"
 #include "comms/robot/arcos_params.hpp"
@@ -34,6 +40,8 @@ class ArcosTelemetryConverter {
   TelemetrySample convert(const arcos::StandardSip& sip, double time_s);
   // Forget the position history (a new connection: the robot may have restarted).
   void reset();
+  // Map frame: see above. Takes effect at the next first SIP.
+  void setAnchor(const Pose2& start_in_map) { anchor_ = start_in_map; }
 
   std::uint64_t skippedSonars() const { return skipped_sonars_; }
   const ArcosParams& params() const { return params_; }
@@ -47,6 +55,9 @@ class ArcosTelemetryConverter {
   std::int64_t x0_ = 0;
   std::int64_t y0_ = 0;
   bool started_ = false;
+  std::optional<Pose2> anchor_;     // where the next first SIP is placed
+  Pose2 to_map_;                    // map <- ARCOS odometry frame (identity without an anchor)
+  std::optional<Pose2> last_pose_;  // last pose delivered (map frame)
   std::uint64_t skipped_sonars_ = 0;
 };
 

@@ -142,6 +142,31 @@ TEST(ArcosRobotPure, SipsBecomeSamplesInSiUnits) {
   EXPECT_NEAR(s.measured_velocity.angular_radps, degToRad(15.5), 1e-12);
 }
 
+TEST(ArcosRobotPure, AnAnchorPutsTheFirstSipAtTheStartPoseAndAReconnectionContinues) {
+  RobotProfile profile = pioneer("p3dx");
+  ArcosTelemetryConverter converter(profile, arcosParamsFromProfile(profile).params);
+  const Pose2 start{3.0, 1.6, kPi / 2.0};
+  converter.setAnchor(start);
+  arcos::StandardSip sip;  // ARCOS after OPEN: (0, 0, 0)
+  TelemetrySample s = converter.convert(sip, 0.0);
+  EXPECT_NEAR(s.odometry_pose.x, 3.0, 1e-9);
+  EXPECT_NEAR(s.odometry_pose.y, 1.6, 1e-9);
+  EXPECT_NEAR(s.odometry_pose.theta, kPi / 2.0, 1e-9);
+  sip.x_raw = 1000;  // 1 m forward in ARCOS's frame = +y in the map (the robot faces +y)
+  s = converter.convert(sip, 0.1);
+  EXPECT_NEAR(s.odometry_pose.x, 3.0, 1e-9);
+  EXPECT_NEAR(s.odometry_pose.y, 2.6, 1e-9);
+  // The link drops; the robot counts from zero again after the new OPEN: no jump.
+  converter.reset();
+  sip.x_raw = 0;
+  s = converter.convert(sip, 5.0);
+  EXPECT_NEAR(s.odometry_pose.x, 3.0, 1e-9);
+  EXPECT_NEAR(s.odometry_pose.y, 2.6, 1e-9);
+  sip.x_raw = 500;
+  s = converter.convert(sip, 5.1);
+  EXPECT_NEAR(s.odometry_pose.y, 3.1, 1e-9);
+}
+
 TEST(ArcosRobot, HandshakesOverAPtyAndReportsTheRobotsIdentity) {
   ArcosPtyServer server(firmware());
   IoThread io;
