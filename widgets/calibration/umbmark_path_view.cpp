@@ -29,11 +29,23 @@ void UmbmarkPathView::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
   p.fillRect(rect(), palette().base());
-  // World extent: the cw square lies at y <= 0, the ccw one at y >= 0, both at x in [0, L];
-  // paths may stray a little outside.
-  const double margin = 0.25 * side_m_;
-  const double x0 = -margin, x1 = side_m_ + margin;
-  const double y0 = -side_m_ - margin, y1 = side_m_ + margin;
+  // World extent: the cw square lies at y <= 0, the ccw one at y >= 0, both at x in [0, L],
+  // grown to every drawn path (a badly calibrated robot strays far).
+  double x0 = 0.0, x1 = side_m_, y0 = -side_m_, y1 = side_m_;
+  for (const auto* trials : {&before_, &after_})
+    for (const UmbmarkTrial& t : *trials)
+      for (const auto* path : {&t.true_path, &t.odometry_path})
+        for (const Vec2& v : *path) {
+          x0 = std::min(x0, v.x());
+          x1 = std::max(x1, v.x());
+          y0 = std::min(y0, v.y());
+          y1 = std::max(y1, v.y());
+        }
+  const double margin = 0.08 * std::max(x1 - x0, y1 - y0);
+  x0 -= margin;
+  x1 += margin;
+  y0 -= margin;
+  y1 += margin;
   const double scale = std::min(width() / (x1 - x0), height() / (y1 - y0));
   const QPointF offset((width() - scale * (x1 - x0)) / 2.0, (height() - scale * (y1 - y0)) / 2.0);
   const auto map = [&](const Vec2& v) {
@@ -74,8 +86,8 @@ void UmbmarkPathView::paintEvent(QPaintEvent*) {
       drawPath(t.true_path, is_cw ? cw : ccw, Qt::SolidLine);
     }
   };
-  drawFirstOfEach(before_, QColor(40, 90, 200), QColor(200, 50, 50), true);
   drawFirstOfEach(after_, QColor(30, 150, 60), QColor(30, 150, 60), false);
+  drawFirstOfEach(before_, QColor(40, 90, 200), QColor(200, 50, 50), true);
 
   p.setPen(palette().text().color());
   p.drawText(rect().adjusted(6, 4, -6, -4), Qt::AlignTop | Qt::AlignLeft,
