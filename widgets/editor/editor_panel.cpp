@@ -15,6 +15,7 @@
 #include <QVBoxLayout>
 #include <algorithm>
 
+#include "core/editing/vectorise.hpp"
 #include "widgets/editor/editor_model.hpp"
 #include "widgets/editor/property_panel.hpp"
 
@@ -111,6 +112,16 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
     edit_row->addWidget(b);
   }
   layout->addLayout(edit_row);
+  vectorise_ = new QAction(tr("Vectorise Raster to Walls"), this);
+  vectorise_->setToolTip(
+      tr("Trace the raster layer's occupied regions (a ROS map) into closed walls"));
+  connect(vectorise_, &QAction::triggered, &model_, [this] {
+    model_.tryApply([](const WorldMap& map) { return editing::vectoriseRaster(map); });
+  });
+  QToolButton* vectorise_button = button(vectorise_, this);
+  vectorise_button->setToolButtonStyle(Qt::ToolButtonTextOnly);
+  layout->addWidget(vectorise_button);
+  connect(&model_, &EditorModel::mapChanged, this, &EditorPanel::updateActions);
 
   // Snapping.
   auto* snap_box = new QGroupBox(tr("Snap"), this);
@@ -209,6 +220,8 @@ void EditorPanel::updateActions() {
   copy_->setEnabled(any);
   delete_->setEnabled(any);
   paste_->setEnabled(model_.canPaste());
+  if (vectorise_ != nullptr)
+    vectorise_->setEnabled(model_.map().raster && !model_.map().raster->raster.empty());
 }
 
 }  // namespace irgs::widgets

@@ -33,6 +33,9 @@ class EditorPanel : public QWidget {
   QAction* copyAction() const { return copy_; }
   QAction* pasteAction() const { return paste_; }
   QAction* deleteAction() const { return delete_; }
+  // Adds the raster layer's occupied outlines as closed walls (core/editing/vectorise.hpp), one
+  // undoable step; enabled while the map has a raster layer.
+  QAction* vectoriseAction() const { return vectorise_; }
   PropertyPanel& properties() const { return *properties_; }
   QListWidget& issueList() const { return *issues_; }
   QCheckBox& gridCheck() const { return *grid_; }
@@ -58,6 +61,7 @@ class EditorPanel : public QWidget {
   QActionGroup* tool_group_ = nullptr;
   QAction* undo_ = nullptr;
   QAction* redo_ = nullptr;
+  QAction* vectorise_ = nullptr;
   QAction* copy_ = nullptr;
   QAction* paste_ = nullptr;
   QAction* delete_ = nullptr;
