@@ -95,5 +95,61 @@ TEST(EditorVectorise, ARosMapIsTracedIntoWallsUndoablyAndTheWallsAreSaved) {
   qunsetenv("IRGS_RECOVERY_DIR");
 }
 
+// A ROS map imported under an existing vector map (File > Open of a JSON map, then the Edit
+// tab's import): one undoable step; vectorising it then adds its walls beside the old ones.
+TEST(EditorVectorise, ARosMapImportedUnderAJsonMapIsAnUndoableRasterLayer) {
+  test::ensureApp();
+  QTemporaryDir dir;
+  ASSERT_TRUE(dir.isValid());
+  qputenv("IRGS_RECOVERY_DIR", dir.filePath(QStringLiteral("recovery")).toUtf8());
+  const QString yaml = dir.filePath(QStringLiteral("scan.yaml"));
+  ASSERT_FALSE(saveRosMap(roomRaster(), yaml.toStdString()).has_value());
+  const QString json = dir.filePath(QStringLiteral("room.json"));
+  ASSERT_FALSE(saveMapFile(test::squareRoom(), json.toStdString()).has_value());
+  QSettings settings(dir.filePath(QStringLiteral("settings.ini")), QSettings::IniFormat);
+  SessionController session(test::thesisRobot(), test::simulatedFactory());
+  auto window = std::make_unique<MainWindow>(session, settings);
+  ASSERT_TRUE(window->mapFiles().openMap(json));
+  window->show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
+  EditorController& editor = window->editor();
+  editor.setActive(true);
+  widgets::EditorModel& model = editor.model();
+  widgets::EditorPanel& panel = editor.panel();
+  ASSERT_FALSE(model.map().raster.has_value());
+  EXPECT_FALSE(panel.vectoriseAction()->isEnabled());  // nothing to vectorise yet
+
+  EXPECT_FALSE(panel.importRaster(dir.filePath(QStringLiteral("missing.yaml"))).isEmpty());
+  EXPECT_FALSE(model.isModified());
+  EXPECT_EQ(panel.importRaster(yaml), QString());
+  ASSERT_TRUE(model.map().raster.has_value());
+  EXPECT_EQ(model.map().raster->raster.width, 80);
+  EXPECT_TRUE(session.worldMap().raster.has_value());  // the simulator sees it
+  EXPECT_TRUE(model.isModified());
+  EXPECT_TRUE(panel.vectoriseAction()->isEnabled());
+  const std::size_t walls = model.map().walls.size();
+  panel.vectoriseAction()->trigger();
+  EXPECT_EQ(model.map().walls.size(), walls + 3);
+
+  model.undoStack().undo();  // the walls
+  model.undoStack().undo();  // the import
+  EXPECT_FALSE(model.map().raster.has_value());
+  EXPECT_EQ(model.map().walls.size(), walls);
+  EXPECT_FALSE(panel.vectoriseAction()->isEnabled());
+  model.undoStack().redo();
+  ASSERT_TRUE(model.map().raster.has_value());
+
+  // Saved as JSON, the raster is referenced relative to the map and loads again.
+  const QString saved = dir.filePath(QStringLiteral("with_raster.json"));
+  ASSERT_FALSE(saveMapFile(model.map(), saved.toStdString()).has_value());
+  const MapLoadResult reloaded = loadMapFile(saved.toStdString());
+  ASSERT_TRUE(reloaded.map.has_value());
+  ASSERT_TRUE(reloaded.map->raster.has_value());
+  EXPECT_EQ(reloaded.map->raster->raster.width, 80);
+  editor.shutdown();
+  window.reset();
+  qunsetenv("IRGS_RECOVERY_DIR");
+}
+
 }  // namespace
 }  // namespace irgs::gui

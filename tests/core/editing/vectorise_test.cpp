@@ -139,3 +139,46 @@ TEST(Vectorise, BadInputThrows) {
 
 }  // namespace
 }  // namespace irgs::editing
+
+namespace irgs::editing {
+namespace {
+
+TEST(RasterLayerEdit, ImportingALayerReplacesTheOldOneAndUndoRestoresIt) {
+  WorldMap map;
+  Wall wall;
+  wall.id = "w";
+  wall.points = {Vec2(0, 0), Vec2(1, 0)};
+  map.walls.push_back(wall);
+  RasterLayer first;
+  first.source = "first.yaml";
+  first.raster = blank(4, 4);
+  RasterLayer second;
+  second.source = "second.yaml";
+  second.raster = blank(8, 2);
+
+  const Edit add = setRasterLayer(map, first);
+  EXPECT_FALSE(add.empty());
+  applyEdit(map, add);
+  ASSERT_TRUE(map.raster.has_value());
+  EXPECT_EQ(map.raster->source, "first.yaml");
+  const Edit replace = setRasterLayer(map, second);
+  applyEdit(map, replace);
+  EXPECT_EQ(map.raster->raster.width, 8);
+  EXPECT_EQ(map.walls.size(), 1u);  // the vectors are untouched
+  revertEdit(map, replace);
+  EXPECT_EQ(map.raster->source, "first.yaml");
+  const Edit remove = setRasterLayer(map, std::nullopt);
+  applyEdit(map, remove);
+  EXPECT_FALSE(map.raster.has_value());
+  revertEdit(map, remove);
+  revertEdit(map, add);
+  EXPECT_FALSE(map.raster.has_value());
+
+  RasterLayer broken;
+  broken.raster = blank(4, 4);
+  broken.raster.cells.pop_back();
+  EXPECT_THROW(setRasterLayer(map, broken), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace irgs::editing
