@@ -1,6 +1,7 @@
 // Photographs the calibration wizards and the Drive tab's pad for docs/calibration.md and
 // docs/teleop.md: the UMBmark wizard after a simulated run (injected E_d 1.01, E_b 1.03), the gyro
-// wizard after the simulated AUTOGYRO procedure, and the main window with the pad being dragged.
+// wizard after the simulated AUTOGYRO procedure, the main window with the pad being dragged, and
+// the editor after vectorising a raster of the default map.
 // Usage: calibration_screenshots OUT_DIR (run under xvfb-run or offscreen).
 
 #include <QApplication>
@@ -11,13 +12,16 @@
 #include <QTextStream>
 
 #include "app/gui/drive_input_controller.hpp"
+#include "app/gui/editor_controller.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/session_controller.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/sim/simulated_robot.hpp"
 #include "core/world/map_file.hpp"
+#include "core/world/raster_world.hpp"
 #include "widgets/calibration/gyro_wizard.hpp"
 #include "widgets/calibration/umbmark_wizard.hpp"
+#include "widgets/editor/editor_panel.hpp"
 #include "widgets/teleop/drive_pad.hpp"
 
 using namespace irgs;
@@ -92,5 +96,27 @@ int main(int argc, char** argv) {
   QTest::qWait(50);
   ok = save(window, out, QStringLiteral("irgs-drive-pad.png")) && ok;
   QTest::mouseRelease(&pad, Qt::LeftButton, {}, centre);
+
+  // The editor after "Vectorise Raster to Walls" on a 5 cm raster of the default map's walls
+  // and obstacles (as a ROS map of that flat would look).
+  RasterMap raster;
+  const Box2 box = map.map->bounds();
+  raster.resolution_m = 0.05;
+  raster.origin = Pose2{box.min.x() - 0.2, box.min.y() - 0.2, 0.0};
+  raster.width = static_cast<int>((box.max.x() - box.min.x() + 0.4) / raster.resolution_m);
+  raster.height = static_cast<int>((box.max.y() - box.min.y() + 0.4) / raster.resolution_m);
+  raster.cells.assign(static_cast<std::size_t>(raster.width * raster.height), RasterMap::kFree);
+  for (int row = 0; row < raster.height; ++row)
+    for (int col = 0; col < raster.width; ++col) {
+      const Vec2 p = raster.cellCentre(col, row);
+      if (map.map->distanceToNearestSegment(p) < 0.06 || map.map->obstacleAt(p) != nullptr)
+        raster.at(col, row) = RasterMap::kOccupied;
+    }
+  session.loadWorld(worldFromRaster(raster, "default_scan.yaml"), QStringLiteral("scan.yaml"));
+  window.editor().setActive(true);
+  window.editor().panel().vectoriseAction()->trigger();
+  QTest::qWait(50);
+  ok = save(window, out, QStringLiteral("irgs-editor-vectorise.png")) && ok;
+  window.editor().shutdown();
   return ok ? 0 : 1;
 }
