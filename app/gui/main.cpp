@@ -20,6 +20,8 @@
 #include "app/gui/app_options.hpp"
 #include "app/gui/app_settings.hpp"
 #include "app/gui/automation.hpp"
+#include "app/gui/calibration_controller.hpp"
+#include "app/gui/drive_input_controller.hpp"
 #include "app/gui/drive_script_player.hpp"
 #include "app/gui/event_format.hpp"
 #include "app/gui/link_ui.hpp"
@@ -199,6 +201,8 @@ int main(int argc, char** argv) {
   // Session recording (app/recording) before any link opens, so it sees every byte; a replay
   // is not recorded again.
   auto* recording = new RecordingUi(session, window.linkUi().controller(), window);
+  new CalibrationController(window, session, robot.file, &window);  // the Calibrate menu
+  new DriveInputController(window.commandPanel(), session, makeSdlGamepadSource(), &window);
   recording->setCollectTrajectory(!options.trajectory_out_file.isEmpty());
   if (options.replay_file.isEmpty() && !options.no_record) {
     const QString path = options.record_file.isEmpty()

@@ -1121,7 +1121,16 @@ void FirmwareCore::sendScaledImu(const TelemetrySample& sample) {
   imu.zacc = toInt16(-(kStandardGravity + noise(config_.accel_noise_mps2)) * to_mg);
   imu.xgyro = toInt16(noise(config_.gyro_noise_radps) * 1000.0);
   imu.ygyro = toInt16(noise(config_.gyro_noise_radps) * 1000.0);
-  imu.zgyro = toInt16(-(v.angular_radps + noise(config_.gyro_noise_radps)) * 1000.0);
+  // The yaw rate: the simulator's gyro model when it has one (its raw indicated rate, bias and
+  // temperature included, as a real gyro reports it), else the true rate plus white noise. The
+  // noise is drawn either way so the stream of the other axes does not depend on the gyro.
+  const double yaw_noise = noise(config_.gyro_noise_radps);
+  const double yaw_rate = sample.gyro ? sample.gyro->rate_radps : v.angular_radps + yaw_noise;
+  imu.zgyro = toInt16(-yaw_rate * 1000.0);
+  if (sample.gyro) {  // cdegC; 0 means "no temperature", so 0 C is sent as 0.01 C
+    const std::int16_t cdeg = toInt16(sample.gyro->temperature_c * 100.0);
+    imu.temperature = cdeg == 0 ? std::int16_t{1} : cdeg;
+  }
   send(imu);
 }
 

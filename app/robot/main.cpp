@@ -286,6 +286,10 @@ int main(int argc, char** argv) {
   sim_config.seed = options.seed;
   sim_config =
       options.ideal ? irgs::idealSimConfig(sim_config) : irgs::typicalSimConfig(sim_config);
+  // A yaw-rate gyro at the AUTOGYRO level of paper 001, as in the GUI's simulator: SCALED_IMU
+  // then carries its raw rate and temperature, so the encoder + gyro filter works over the link.
+  if (!options.ideal)
+    sim_config.gyro = irgs::autogyroErrorModel();
   // Below 38400 baud the full telemetry does not fit: use the compact dialect profile.
   irgs::app::FirmwareConfig fw_config;
   if (options.baud < 38400 && !options.tcp_port) {

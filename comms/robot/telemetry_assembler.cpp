@@ -34,6 +34,8 @@ TelemetryAssembler::TelemetryAssembler(RobotProfile profile, TelemetryAssemblerC
     : profile_(std::move(profile)), config_(config) {
   if (!std::isfinite(config_.hold_s) || config_.hold_s <= 0.0)
     throw std::invalid_argument("TelemetryAssembler: hold_s must be finite and > 0");
+  if (!std::isfinite(config_.max_gyro_age_s) || config_.max_gyro_age_s < 0.0)
+    throw std::invalid_argument("TelemetryAssembler: max_gyro_age_s must be finite and >= 0");
   carried_.proximity_m.reserve(profile_.proximity.size());
   for (const ProximitySpec& spec : profile_.proximity)
     carried_.proximity_m.push_back(spec.max_range_m);  // nothing seen until told otherwise
@@ -125,6 +127,7 @@ void TelemetryAssembler::release() {
   sample.right_ticks = carried_.right_ticks;
   sample.bumpers = carried_.bumpers;
   sample.proximity_m = carried_.proximity_m;
+  attachGyro(sample);
   counters_.sonar_readings += sample.sonar.size();
   ++counters_.samples;
   released_ms_ = current_.time_ms;
@@ -132,6 +135,14 @@ void TelemetryAssembler::release() {
   last_velocity_ = sample.measured_velocity;
   ready_.push_back(std::move(sample));
   current_ = {};
+}
+
+void TelemetryAssembler::attachGyro(TelemetrySample& sample) const {
+  if (!gyro_)
+    return;
+  const double age_s = sample.time_s - static_cast<double>(gyro_ms_) * 1e-3;
+  if (age_s >= -1e-9 && age_s <= config_.max_gyro_age_s + 1e-9)
+    sample.gyro = gyro_;
 }
 
 bool TelemetryAssembler::belongsToHeldRelease(std::int64_t time_ms) const {
@@ -168,6 +179,7 @@ void TelemetryAssembler::flushLate() {
   sample.right_ticks = carried_.right_ticks;
   sample.bumpers = carried_.bumpers;
   sample.proximity_m = carried_.proximity_m;
+  attachGyro(sample);
   counters_.sonar_readings += sample.sonar.size();
   ++counters_.late_samples;
   ready_.push_back(std::move(sample));
@@ -323,6 +335,25 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
         advanceTo(usToMs(ticks->time_usec), false);
       carried_.left_ticks = ticks->left_ticks;
       carried_.right_ticks = ticks->right_ticks;
+      break;
+    }
+    case mav::ScaledImu::kId: {
+      const auto imu = frame.as<mav::ScaledImu>();
+      if (!imu)
+        return;
+      // Like the ticks: a newer time stamp first releases the step before it, so the reading
+      // rides on its own step and every later one (zero-order hold).
+      if (!belongsToHeldRelease(imu->time_boot_ms))
+        advanceTo(imu->time_boot_ms, false);
+      GyroReading reading;
+      reading.rate_radps = -static_cast<double>(imu->zgyro) * 1e-3;  // FRD z down -> ours up
+      if (imu->temperature != 0)
+        reading.temperature_c = static_cast<double>(imu->temperature) * 0.01;
+      reading.saturated = imu->zgyro == std::numeric_limits<std::int16_t>::max() ||
+                          imu->zgyro <= -std::numeric_limits<std::int16_t>::max();
+      gyro_ = reading;
+      gyro_ms_ = imu->time_boot_ms;
+      ++counters_.gyro_readings;
       break;
     }
     case mav::IrgsContact::kId: {

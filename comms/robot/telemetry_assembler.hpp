@@ -25,6 +25,11 @@
 // on the byte stream alone, never on the timer, and a replay of the recorded bytes builds the
 // same map as the live session did.
 //
+// SCALED_IMU (body FRD, mrad/s; docs/protocol.md) gives the gyro: rate = -zgyro (our z is up),
+// temperature from its cdegC extension (0 = not provided: 25 C, GyroReading's default), and
+// saturated when zgyro sits at the int16 limit. The rate is the gyro's raw indicated rate; the
+// profile's gyro calibration is applied by the estimator, as for the simulator's gyro.
+//
 // A time stamp more than kRestartJump_ms older than the newest one means the robot restarted:
 // the assembler starts over (counted in restarts). Call reset() when the link is re-established.
 
@@ -43,6 +48,10 @@ struct TelemetryAssemblerConfig {
   double hold_s = 0.1;           // release a complete sample after this long without newer data
   // Sonar readings kept while no pose has arrived yet; older ones are dropped (and counted).
   std::size_t max_unposed_readings = 1024;
+  // SCALED_IMU's yaw rate becomes TelemetrySample::gyro (zero-order hold: every sample carries
+  // the newest reading) while the reading is at most this much older than the sample, robot
+  // time; older readings are not used (an IMU stream that stopped is not a gyro at rest).
+  double max_gyro_age_s = 0.3;
 };
 
 struct TelemetryAssemblerCounters {
@@ -54,6 +63,7 @@ struct TelemetryAssemblerCounters {
   std::uint64_t late_samples = 0;        // supplementary samples of readings after a hold release
   std::uint64_t unsupported_frames = 0;  // ODOMETRY in a frame we cannot convert
   std::uint64_t restarts = 0;            // robot clock jumped back (reboot)
+  std::uint64_t gyro_readings = 0;       // SCALED_IMU frames taken as gyro readings
 };
 
 class TelemetryAssembler {
@@ -119,6 +129,9 @@ class TelemetryAssembler {
   bool released_by_hold_ = false;            // the last release was the hold timer's
   std::optional<TelemetrySample> late_;      // supplementary sample for late readings
   TelemetrySample carried_;                  // ticks, bumpers, proximity of the newest data
+  std::optional<GyroReading> gyro_;          // the newest SCALED_IMU yaw rate
+  std::int64_t gyro_ms_ = 0;                 // its robot time
+  void attachGyro(TelemetrySample& sample) const;
   std::vector<TelemetrySample> ready_;
   TelemetryAssemblerCounters counters_;
 };

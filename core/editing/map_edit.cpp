@@ -333,6 +333,8 @@ void applyEdit(WorldMap& map, const Edit& edit) {
     }
     throw;
   }
+  if (edit.raster)
+    map.raster = edit.raster->after;
 }
 
 void revertEdit(WorldMap& map, const Edit& edit) {
@@ -348,7 +350,25 @@ void revertEdit(WorldMap& map, const Edit& edit) {
       perform(map, c, c.before, c.after);
     }
     throw;
+  }  // The raster layer is independent of the elements: its order among the changes is free.
+  if (edit.raster)
+    map.raster = edit.raster->before;
+}
+
+Edit setRasterLayer(const WorldMap& map, std::optional<RasterLayer> layer) {
+  if (layer) {
+    const RasterMap& r = layer->raster;
+    if (r.width <= 0 || r.height <= 0 ||
+        r.cells.size() != static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height))
+      throw std::invalid_argument("raster layer: cell count does not match its size");
+    if (!(std::isfinite(r.resolution_m) && r.resolution_m > 0.0))
+      throw std::invalid_argument("raster layer: resolution must be > 0");
   }
+  Edit edit;
+  edit.label = layer ? "Import raster layer" : "Remove raster layer";
+  edit.raster = RasterChange{map.raster, std::move(layer)};
+  edit.selection_after = {};
+  return edit;
 }
 
 std::string uniqueId(const WorldMap& map, std::string_view prefix) {

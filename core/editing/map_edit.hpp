@@ -3,13 +3,14 @@
 //
 // An Edit is a list of element changes (insert, replace, erase), each holding the element before
 // and after, so applying and reverting are exact and need no snapshot of the whole map (a raster
-// layer is never copied). Builders such as addElement() or moveElements() are pure: they read the
-// map and return the Edit; applyEdit() performs it. Edits must be applied and reverted in stack
-// order (what QUndoStack guarantees): a change addresses its element by index. Misuse (an index
-// outside the map, an element of the wrong kind) throws; ordinary editing never does.
+// layer is copied only by setRasterLayer, the import that replaces it). Builders such as
+// addElement() or moveElements() are pure: they read the map and return the Edit; applyEdit()
+// performs it. Edits must be applied and reverted in stack order (what QUndoStack guarantees): a
+// change addresses its element by index. Misuse (an index outside the map, an element of the wrong
+// kind) throws; ordinary editing never does.
 //
 // Editable elements: walls (polylines, open or closed), polygon obstacles, point features
-// (corner/edge) and the start pose. World metres and radians.
+// (corner/edge) and the start pose; the raster layer as a whole. World metres and radians.
 
 #include <cstddef>
 #include <optional>
@@ -61,12 +62,20 @@ struct Change {
   std::optional<Element> after;   // empty: an erasure at `index`
 };
 
+// The raster layer replaced (a ROS map imported under the vectors, or removed). The only change
+// that holds raster layers: element edits never copy one.
+struct RasterChange {
+  std::optional<RasterLayer> before;
+  std::optional<RasterLayer> after;
+};
+
 struct Edit {
   std::string label;                        // for the undo menu ("Add wall")
   std::vector<Change> changes;              // applied in order, reverted in reverse order
   std::vector<ElementRef> selection_after;  // what the editor selects once applied
+  std::optional<RasterChange> raster;       // applied after `changes`, reverted before them
 
-  bool empty() const { return changes.empty(); }
+  bool empty() const { return changes.empty() && !raster; }
 };
 
 // Performs / undoes the edit. Throws std::logic_error when the map does not fit the edit
@@ -106,6 +115,11 @@ Edit pasteElements(const WorldMap& map, const Clipboard& clipboard, const Vec2& 
 // Turns `current`'s walls, obstacles, features and start pose into `target`'s (recovery of
 // autosaved edits as one undoable step).
 Edit replaceContents(const WorldMap& current, const WorldMap& target, std::string label);
+
+// Puts `layer` under the map's vectors (nothing: removes the raster layer), replacing any
+// layer it had. Throws std::invalid_argument for a layer whose cell count does not match its
+// size or whose resolution is not > 0.
+Edit setRasterLayer(const WorldMap& map, std::optional<RasterLayer> layer);
 
 // Centre of the bounding box of the referenced elements (the rotation pivot).
 Vec2 selectionCentre(const WorldMap& map, const std::vector<ElementRef>& refs);

@@ -362,6 +362,11 @@ double CommandPanel::simSpeed() const {
   return speed_combo_->currentData().toDouble();
 }
 
+void CommandPanel::addSection(QWidget* section) {
+  auto* column = static_cast<QVBoxLayout*>(layout());
+  column->insertWidget(column->count() - 1, section);  // above the closing stretch
+}
+
 void CommandPanel::setDriveSpeeds(double linear_mps, double angular_radps) {
   if (std::isfinite(linear_mps) && linear_mps >= 0.0) {
     const QSignalBlocker block(linear_spin_);

@@ -50,6 +50,8 @@ class CommandPanel : public QWidget {
   // Speeds used by the drive pad (and shown for the keyboard teleop). Non-finite or negative
   // values are ignored; values are clamped to the spin box ranges.
   void setDriveSpeeds(double linear_mps, double angular_radps);
+  // Adds a group below the panel's own (the drive pad and gamepad status, app/gui).
+  void addSection(QWidget* section);
   double linearSpeed() const;   // m/s
   double angularSpeed() const;  // rad/s
 

@@ -5,16 +5,21 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QFileDialog>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QListWidget>
+#include <QMessageBox>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <filesystem>
 
+#include "core/editing/vectorise.hpp"
+#include "core/world/ros_map.hpp"
 #include "widgets/editor/editor_model.hpp"
 #include "widgets/editor/property_panel.hpp"
 
@@ -111,6 +116,31 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
     edit_row->addWidget(b);
   }
   layout->addLayout(edit_row);
+  vectorise_ = new QAction(tr("Vectorise Raster to Walls"), this);
+  vectorise_->setToolTip(
+      tr("Trace the raster layer's occupied regions (a ROS map) into closed walls"));
+  connect(vectorise_, &QAction::triggered, &model_, [this] {
+    model_.tryApply([](const WorldMap& map) { return editing::vectoriseRaster(map); });
+  });
+  import_raster_ = new QAction(tr("Import ROS Map as Raster…"), this);
+  import_raster_->setToolTip(tr("Put a ROS map_server map (.yaml + image) under the vectors"));
+  connect(import_raster_, &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import ROS Map as Raster"), {},
+                                                      tr("ROS maps (*.yaml *.yml)"));
+    if (path.isEmpty())
+      return;
+    const QString problem = importRaster(path);
+    if (!problem.isEmpty())
+      QMessageBox::warning(this, tr("Import ROS Map"), problem);
+  });
+  auto* raster_row = new QHBoxLayout;
+  for (QAction* a : {import_raster_, vectorise_}) {
+    QToolButton* b = button(a, this);
+    b->setToolButtonStyle(Qt::ToolButtonTextOnly);
+    raster_row->addWidget(b);
+  }
+  layout->addLayout(raster_row);
+  connect(&model_, &EditorModel::mapChanged, this, &EditorPanel::updateActions);
 
   // Snapping.
   auto* snap_box = new QGroupBox(tr("Snap"), this);
@@ -204,11 +234,40 @@ void EditorPanel::refreshIssues() {
   issues_->setVisible(!list.empty());
 }
 
+QString EditorPanel::importRaster(const QString& yaml_path) {
+  const std::filesystem::path path = yaml_path.toStdString();
+  const RosMapLoadResult loaded = loadRosMap(path);
+  if (!loaded.raster) {
+    QStringList lines;
+    for (const Diagnostic& d : loaded.diagnostics)
+      lines << QString::fromStdString(d.toString());
+    return lines.isEmpty() ? tr("%1 could not be read").arg(yaml_path)
+                           : lines.join(QLatin1Char('\n'));
+  }
+  RasterLayer layer;
+  layer.source = path.filename().string();
+  layer.raster = *loaded.raster;
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  layer.resolved_path = ec ? path.string() : absolute.lexically_normal().string();
+  QString problem;
+  const QMetaObject::Connection listen = connect(&model_, &EditorModel::rejected, this,
+                                                 [&problem](const QString& why) { problem = why; });
+  const bool applied = model_.tryApply(
+      [&layer](const WorldMap& map) { return editing::setRasterLayer(map, std::move(layer)); });
+  disconnect(listen);
+  if (!applied)
+    return problem.isEmpty() ? tr("the raster layer was not imported") : problem;
+  return {};
+}
+
 void EditorPanel::updateActions() {
   const bool any = !model_.selection().empty();
   copy_->setEnabled(any);
   delete_->setEnabled(any);
   paste_->setEnabled(model_.canPaste());
+  if (vectorise_ != nullptr)
+    vectorise_->setEnabled(model_.map().raster && !model_.map().raster->raster.empty());
 }
 
 }  // namespace irgs::widgets

@@ -33,6 +33,14 @@ class EditorPanel : public QWidget {
   QAction* copyAction() const { return copy_; }
   QAction* pasteAction() const { return paste_; }
   QAction* deleteAction() const { return delete_; }
+  // Adds the raster layer's occupied outlines as closed walls (core/editing/vectorise.hpp), one
+  // undoable step; enabled while the map has a raster layer.
+  QAction* vectoriseAction() const { return vectorise_; }
+  // Opens a file dialog for a ROS map (.yaml) and imports it as the raster layer.
+  QAction* importRasterAction() const { return import_raster_; }
+  // Imports the ROS map at `yaml_path` as the map's raster layer (replacing any), one undoable
+  // step. Returns the problem ("" on success); the action shows it in a message box.
+  QString importRaster(const QString& yaml_path);
   PropertyPanel& properties() const { return *properties_; }
   QListWidget& issueList() const { return *issues_; }
   QCheckBox& gridCheck() const { return *grid_; }
@@ -58,6 +66,8 @@ class EditorPanel : public QWidget {
   QActionGroup* tool_group_ = nullptr;
   QAction* undo_ = nullptr;
   QAction* redo_ = nullptr;
+  QAction* vectorise_ = nullptr;
+  QAction* import_raster_ = nullptr;
   QAction* copy_ = nullptr;
   QAction* paste_ = nullptr;
   QAction* delete_ = nullptr;
