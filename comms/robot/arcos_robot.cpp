@@ -266,6 +266,23 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
     stats_snapshot.reconnect_attempts = reconnect_attempts;
     if (session_stats.last_sip_s)
       stats_snapshot.since_heartbeat_s = t - *session_stats.last_sip_s;
+    updateRates(t);
+  }
+
+  // Sliding-window byte and packet rates for the link-health panel, as the MAVLink session
+  // reports them (caller holds `mutex`).
+  void updateRates(double t) {
+    totals.push_back({t, rx_bytes, tx_bytes, counters.packets, tx_packets});
+    while (totals.size() > 2 && t - totals.front().t > kRateWindow_s)
+      totals.pop_front();
+    const Totals& first = totals.front();
+    const double span = t - first.t;
+    if (span <= 0.0)
+      return;
+    stats_snapshot.rx_bytes_per_s = static_cast<double>(rx_bytes - first.rx_bytes) / span;
+    stats_snapshot.tx_bytes_per_s = static_cast<double>(tx_bytes - first.tx_bytes) / span;
+    stats_snapshot.rx_messages_per_s = static_cast<double>(counters.packets - first.rx) / span;
+    stats_snapshot.tx_messages_per_s = static_cast<double>(tx_packets - first.tx) / span;
   }
 
   // Rate bookkeeping (caller holds `mutex`): arrival time and sonar count of every sample,
@@ -315,6 +332,12 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   std::uint64_t rx_bytes = 0;
   std::uint64_t tx_bytes = 0;
   std::uint64_t tx_packets = 0;
+  struct Totals {
+    double t;
+    std::uint64_t rx_bytes, tx_bytes, rx, tx;
+  };
+  static constexpr double kRateWindow_s = 2.0;
+  std::deque<Totals> totals;  // for the rates over the last kRateWindow_s
   std::uint32_t link_losses = 0;
   std::uint32_t reconnect_attempts = 0;
 

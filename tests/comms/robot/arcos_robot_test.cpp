@@ -192,7 +192,13 @@ TEST(ArcosRobot, HandshakesOverAPtyAndReportsTheRobotsIdentity) {
     readings += s.sonar.size();
   EXPECT_GT(readings, 20u);
   EXPECT_NEAR(samples.back().odometry_pose.x, 0.0, 1e-9);
-  EXPECT_EQ(robot.linkStats().crc_errors, 0u);
+  const LinkStats stats = robot.linkStats();
+  EXPECT_EQ(stats.crc_errors, 0u);
+  // Rates for the link-health panel: ~10 SIPs/s of tens of bytes each, PULSEs the other way.
+  EXPECT_GT(stats.rx_messages_per_s, 5.0);
+  EXPECT_LT(stats.rx_messages_per_s, 15.0);
+  EXPECT_GT(stats.rx_bytes_per_s, 100.0);
+  EXPECT_GT(stats.tx_bytes_per_s, 0.0);
 }
 
 TEST(ArcosRobot, DrivesTheVirtualPioneerAndItsSamplesFollow) {
