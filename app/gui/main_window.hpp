@@ -26,7 +26,9 @@ class EditorController;
 class LinkUi;
 class LocalizationController;
 class MapFileActions;
+class ParametersController;
 class PlanningController;
+class PlotsController;
 class SessionController;
 class SessionStatusBar;
 
@@ -56,6 +58,10 @@ class MainWindow : public QMainWindow {
   LocalizationController& localization() const { return *localization_; }
   // The map editor ("Edit" tab).
   EditorController& editor() const { return *editor_; }
+  // The "Plots" dock: field browser and plot panels (View > Plots).
+  PlotsController& plots() const { return *plots_; }
+  // The "Parameters" dock: profile, algorithm and firmware parameters (View > Parameters).
+  ParametersController& parameters() const { return *parameters_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -95,6 +101,8 @@ class MainWindow : public QMainWindow {
   LinkUi* link_ui_ = nullptr;
   LocalizationController* localization_ = nullptr;
   EditorController* editor_ = nullptr;
+  PlotsController* plots_ = nullptr;
+  ParametersController* parameters_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 
