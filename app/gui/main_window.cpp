@@ -17,6 +17,7 @@
 
 #include "app/gui/app_settings.hpp"
 #include "app/gui/editor_controller.hpp"
+#include "app/gui/export_actions.hpp"
 #include "app/gui/link_ui.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
@@ -108,6 +109,7 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   side_splitter_->setStretchFactor(1, 0);
   side_splitter_->setStretchFactor(2, 1);
   plots_ = new PlotsController(session_, *localization_, link_ui_->controller(), *this);
+  exports_ = new ExportActions(session_, *canvas_, link_ui_->controller(), *this);
   parameters_ = new ParametersController(session_, *localization_, *planning_,
                                          link_ui_->controller(), settings_, *this);
   connectSession();
@@ -171,6 +173,7 @@ void MainWindow::buildLayout() {
 
 void MainWindow::buildFileMenu() {
   QMenu* menu = menuBar()->addMenu(tr("&File"));
+  menu->setObjectName(QStringLiteral("fileMenu"));  // ExportActions adds its submenu
   menu->addAction(map_files_->openAction());
   menu->addMenu(map_files_->recentMenu());
   menu->addSeparator();

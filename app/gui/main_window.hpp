@@ -23,6 +23,7 @@ class PlanningPanel;
 namespace irgs::gui {
 
 class EditorController;
+class ExportActions;
 class LinkUi;
 class LocalizationController;
 class MapFileActions;
@@ -62,6 +63,8 @@ class MainWindow : public QMainWindow {
   PlotsController& plots() const { return *plots_; }
   // The "Parameters" dock: profile, algorithm and firmware parameters (View > Parameters).
   ParametersController& parameters() const { return *parameters_; }
+  // File > Export: map view PNG/SVG, sonar grid as ROS map, session summary.
+  ExportActions& exports() const { return *exports_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -103,6 +106,7 @@ class MainWindow : public QMainWindow {
   EditorController* editor_ = nullptr;
   PlotsController* plots_ = nullptr;
   ParametersController* parameters_ = nullptr;
+  ExportActions* exports_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

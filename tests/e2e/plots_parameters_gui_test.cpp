@@ -7,12 +7,17 @@
 
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QFile>
+#include <QImage>
+#include <QMenu>
+#include <QMenuBar>
 #include <QSettings>
 #include <QTemporaryDir>
 #include <QTest>
 #include <cmath>
 #include <numbers>
 
+#include "app/gui/export_actions.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/parameters_controller.hpp"
@@ -20,6 +25,7 @@
 #include "app/gui/plots_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "tests/e2e/app_test_support.hpp"
+#include "widgets/canvas/map_canvas.hpp"
 #include "widgets/params/parameter_table.hpp"
 #include "widgets/plots/field_browser.hpp"
 #include "widgets/plots/plot_data_hub.hpp"
@@ -133,6 +139,59 @@ TEST_F(DocksTest, AlgorithmParametersTakeEffectAndAreSavedPerRobot) {
                         .table()
                         .spec(QStringLiteral("mapping/grid_resolution_m"))
                         ->default_value);
+}
+
+TEST_F(DocksTest, ExportsTheMapViewTheSonarGridAndASummaryMidSession) {
+  auto* file = window_->menuBar()->findChild<QMenu*>(QStringLiteral("fileMenu"));
+  ASSERT_NE(file, nullptr);
+  bool found = false;
+  for (QAction* a : file->actions())
+    found = found || a->menu() == &window_->exports().menu();
+  EXPECT_TRUE(found) << "File > Export is missing";
+  session_->drive(0.2, 0.4);
+  run(4.0);
+  session_->report(EventLevel::kWarning, QStringLiteral("a <test> warning"));
+  ExportActions& exports = window_->exports();
+  QTemporaryDir out;
+  ASSERT_TRUE(out.isValid());
+
+  const QString png = out.filePath(QStringLiteral("map.png"));
+  ASSERT_EQ(exports.exportMapPng(png), QString());
+  EXPECT_EQ(QImage(png).size(), window_->canvas().size());
+
+  const QString svg = out.filePath(QStringLiteral("map.svg"));
+  ASSERT_EQ(exports.exportMapSvg(svg), QString());
+  QFile svg_file(svg);
+  ASSERT_TRUE(svg_file.open(QIODevice::ReadOnly));
+  const QByteArray svg_text = svg_file.readAll();
+  EXPECT_TRUE(svg_text.contains("<svg"));
+  EXPECT_TRUE(svg_text.contains("<path") || svg_text.contains("<polyline"));  // vector walls
+
+  const QString yaml = out.filePath(QStringLiteral("sonar.yaml"));
+  ASSERT_EQ(exports.exportRosMap(yaml), QString());
+  QFile yaml_file(yaml);
+  ASSERT_TRUE(yaml_file.open(QIODevice::ReadOnly | QIODevice::Text));
+  const QString yaml_text = QString::fromUtf8(yaml_file.readAll());
+  EXPECT_TRUE(yaml_text.contains(QStringLiteral("image: sonar.pgm"))) << yaml_text.toStdString();
+  EXPECT_TRUE(QFile::exists(out.filePath(QStringLiteral("sonar.pgm"))));
+
+  const recording::SessionSummary summary = exports.liveSummary();
+  EXPECT_NEAR(summary.duration_s, session_->displayTime_s(), 1e-9);
+  // 4 s at up to 0.2 m/s (the robot accelerates first).
+  EXPECT_GT(summary.distance_m, 0.4);
+  EXPECT_LT(summary.distance_m, 0.81);
+  EXPECT_FALSE(summary.link.has_value());  // the simulator
+  const QString md = out.filePath(QStringLiteral("summary.md"));
+  ASSERT_EQ(exports.exportSummary(md), QString());
+  QFile md_file(md);
+  ASSERT_TRUE(md_file.open(QIODevice::ReadOnly | QIODevice::Text));
+  const QString md_text = QString::fromUtf8(md_file.readAll());
+  EXPECT_TRUE(md_text.contains(QStringLiteral("| warning | a <test> warning |")))
+      << md_text.toStdString();
+  EXPECT_TRUE(md_text.contains(QStringLiteral("| Distance | ")));
+  const QString html = out.filePath(QStringLiteral("summary.html"));
+  ASSERT_EQ(exports.exportSummary(html), QString());
+  EXPECT_NE(exports.exportSummary(out.filePath(QStringLiteral("summary.txt"))), QString());
 }
 
 }  // namespace

@@ -64,6 +64,17 @@ QString legendText(const PlotTrace& trace) {
              : QStringLiteral("%1 [%2]").arg(lastComponent(trace.key), trace.display_unit);
 }
 
+// The y interval for data spanning `all`: 5 % padding; a flat or empty signal gets a small span.
+PlotRange fitY(const std::optional<PlotRange>& all) {
+  if (!all)
+    return {-1.0, 1.0};
+  double span = all->max - all->min;
+  if (span <= 1e-12 * std::max(1.0, std::abs(all->max)))
+    span = std::max(std::abs(all->max) * 0.1, 1e-6);
+  const double pad = 0.05 * span;
+  return {all->min - pad, all->max + pad};
+}
+
 }  // namespace
 
 PlotTrace defaultTrace(const QString& key, const QString& unit, const QColor& colour) {
@@ -195,13 +206,7 @@ PlotRange PlotPanel::visibleY() const {
       all = all ? PlotRange{std::min(all->min, r->min), std::max(all->max, r->max)} : *r;
     }
   }
-  if (!all)
-    return {-1.0, 1.0};
-  double span = all->max - all->min;
-  if (span <= 1e-12 * std::max(1.0, std::abs(all->max)))
-    span = std::max(std::abs(all->max) * 0.1, 1e-6);
-  const double pad = 0.05 * span;
-  return {all->min - pad, all->max + pad};
+  return fitY(all);
 }
 
 void PlotPanel::setCurrent(bool current) {
@@ -238,31 +243,57 @@ void PlotPanel::paintTo(QPainter& painter, const QRect& area) const {
     QString text;
     QColor colour;
   };
+  // One decimation per trace and frame: the columns keep every extreme, so the legend's min/max
+  // and the fitted y axis come from them too (no second pass over the samples).
+  const auto [t0, t1] = visibleTime();
+  const int columns_px = std::max(10, area.width() - kAxisLeft_px - kMargin_px * 2);
+  std::vector<std::vector<PlotColumn>> columns(traces_.size());
+  std::vector<std::optional<PlotRange>> ranges(traces_.size());
+  std::optional<PlotRange> all;
+  for (std::size_t i = 0; i < traces_.size(); ++i) {
+    const PlotSeries* series = hub_.series(traces_[i].key);
+    if (series == nullptr)
+      continue;
+    columns[i] = series->decimate(t0, t1, columns_px);
+    if (columns[i].empty())
+      continue;
+    double lo = columns[i].front().min;
+    double hi = columns[i].front().max;
+    for (const PlotColumn& c : columns[i]) {
+      lo = std::min(lo, c.min);
+      hi = std::max(hi, c.max);
+    }
+    const double a = lo * traces_[i].scale;
+    const double b = hi * traces_[i].scale;
+    ranges[i] = PlotRange{std::min(a, b), std::max(a, b)};
+    all = all ? PlotRange{std::min(all->min, ranges[i]->min), std::max(all->max, ranges[i]->max)}
+              : *ranges[i];
+  }
   std::vector<LegendEntry> entries;
-  for (const PlotTrace& t : traces_) {
+  for (std::size_t i = 0; i < traces_.size(); ++i) {
+    const PlotTrace& t = traces_[i];
     QString text = legendText(t);
     const PlotSeries* series = hub_.series(t.key);
     if (series != nullptr && !series->empty()) {
       text += QStringLiteral("  %1").arg(formatValue(series->newest().value * t.scale));
-      if (const auto r = visibleRange(t.key)) {
+      if (const auto& r = ranges[i])
         text += QStringLiteral("  (min %1, max %2)").arg(formatValue(r->min), formatValue(r->max));
-      }
     }
     entries.push_back({text, t.colour});
   }
-  int x = area.left() + kMargin_px;
-  int y = area.top() + kMargin_px;
+  int legend_x = area.left() + kMargin_px;
+  int legend_y = area.top() + kMargin_px;
   int rows = 1;
   std::vector<QPoint> positions;
   for (const LegendEntry& e : entries) {
-    const int w = 14 + fm.horizontalAdvance(e.text) + 12;
-    if (x + w > area.right() - kMargin_px && x > area.left() + kMargin_px) {
-      x = area.left() + kMargin_px;
-      y += kLegendRow_px;
+    const int entry_w = 14 + fm.horizontalAdvance(e.text) + 12;
+    if (legend_x + entry_w > area.right() - kMargin_px && legend_x > area.left() + kMargin_px) {
+      legend_x = area.left() + kMargin_px;
+      legend_y += kLegendRow_px;
       ++rows;
     }
-    positions.emplace_back(x, y);
-    x += w;
+    positions.emplace_back(legend_x, legend_y);
+    legend_x += entry_w;
   }
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const QPoint p = positions[i];
@@ -276,12 +307,9 @@ void PlotPanel::paintTo(QPainter& painter, const QRect& area) const {
                      tr("Drag fields here from the field browser (or double-click a field)"));
   }
   const int legend_h = rows * kLegendRow_px + kMargin_px;
-  const QRect plot(area.left() + kAxisLeft_px, area.top() + legend_h + kMargin_px,
-                   std::max(10, area.width() - kAxisLeft_px - kMargin_px * 2),
+  const QRect plot(area.left() + kAxisLeft_px, area.top() + legend_h + kMargin_px, columns_px,
                    std::max(10, area.height() - legend_h - kAxisBottom_px - kMargin_px * 2));
-
-  const auto [t0, t1] = visibleTime();
-  const PlotRange yr = visibleY();
+  const PlotRange yr = fixed_y_ ? *fixed_y_ : fitY(all);
   const double sx = plot.width() / (t1 - t0);
   const double sy = plot.height() / (yr.max - yr.min);
   auto px = [&](double t) { return plot.left() + (t - t0) * sx; };
@@ -312,30 +340,66 @@ void PlotPanel::paintTo(QPainter& painter, const QRect& area) const {
   painter.setPen(QColor(150, 150, 150));
   painter.drawRect(plot.adjusted(0, 0, -1, -1));
 
-  // Traces from the decimated columns: first -> min -> max -> last per column, joined.
-  painter.save();
-  painter.setClipRect(plot);
-  painter.setRenderHint(QPainter::Antialiasing, false);
-  QPolygonF line;
-  for (const PlotTrace& t : traces_) {
-    const PlotSeries* series = hub_.series(t.key);
-    if (series == nullptr)
-      continue;
-    const std::vector<PlotColumn> columns = series->decimate(t0, t1, plot.width());
-    line.clear();
-    line.reserve(static_cast<qsizetype>(columns.size() * 4));
-    for (const PlotColumn& c : columns) {
-      const double xx = px(c.time_s);
-      line << QPointF(xx, py(c.first * t.scale));
-      if (c.min != c.max) {
-        line << QPointF(xx, py(c.min * t.scale)) << QPointF(xx, py(c.max * t.scale));
+  // Traces from the decimated columns, rasterised straight into an image the size of the plot:
+  // per column a vertical span min..max, joined to the previous column's last value by a line.
+  // The same 1-px picture as a polyline through first/min/max/last of every column, at a
+  // fraction of the cost of QPainter stroking ~5 600 short segments per trace (measured with
+  // irgs-plot-frame-bench, docs/performance.md).
+  QImage layer(plot.size(), QImage::Format_ARGB32_Premultiplied);
+  layer.fill(Qt::transparent);
+  const int w = layer.width();
+  const int h = layer.height();
+  auto put = [&](int x, int y, QRgb rgb) {
+    if (x >= 0 && x < w && y >= 0 && y < h)
+      reinterpret_cast<QRgb*>(layer.scanLine(y))[x] = rgb;
+  };
+  auto toPx = [&](double t) { return static_cast<int>(std::floor((t - t0) * sx)); };
+  auto toPy = [&](double v) {
+    const double y = (yr.max - v) * sy;
+    return static_cast<int>(std::floor(std::clamp(y, -1.0, static_cast<double>(h))));
+  };
+  for (std::size_t i = 0; i < traces_.size(); ++i) {
+    const PlotTrace& t = traces_[i];
+    const QRgb rgb = t.colour.rgba();
+    std::optional<QPoint> previous;
+    for (const PlotColumn& c : columns[i]) {
+      const int x = toPx(c.time_s);
+      const int y_first = toPy(c.first * t.scale);
+      if (previous) {
+        // Bresenham from the previous column's last value to this column's first.
+        int x0 = previous->x();
+        int y0 = previous->y();
+        const int dx = std::abs(x - x0);
+        const int dy = -std::abs(y_first - y0);
+        const int step_x = x0 < x ? 1 : -1;
+        const int step_y = y0 < y_first ? 1 : -1;
+        int error = dx + dy;
+        for (;;) {
+          put(x0, y0, rgb);
+          if (x0 == x && y0 == y_first)
+            break;
+          const int e2 = 2 * error;
+          if (e2 >= dy) {
+            error += dy;
+            x0 += step_x;
+          }
+          if (e2 <= dx) {
+            error += dx;
+            y0 += step_y;
+          }
+        }
       }
-      line << QPointF(xx, py(c.last * t.scale));
+      const int ya = toPy(c.min * t.scale);
+      const int yb = toPy(c.max * t.scale);
+      if (x >= 0 && x < w) {
+        for (int y = std::max(0, std::min({ya, yb, y_first}));
+             y <= std::min(h - 1, std::max({ya, yb, y_first})); ++y)
+          reinterpret_cast<QRgb*>(layer.scanLine(y))[x] = rgb;
+      }
+      previous = QPoint(x, toPy(c.last * t.scale));
     }
-    painter.setPen(QPen(t.colour, 1.3));
-    painter.drawPolyline(line);
   }
-  painter.restore();
+  painter.drawImage(plot.topLeft(), layer);
 
   if (paused_) {
     painter.setPen(QColor(180, 0, 0));

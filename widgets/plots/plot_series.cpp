@@ -50,14 +50,15 @@ std::size_t PlotSeries::lowerBound(double time_s) const {
 }
 
 std::optional<PlotRange> PlotSeries::range(double t0, double t1) const {
-  std::optional<PlotRange> out;
-  for (std::size_t i = lowerBound(t0); i < size_ && at(i).time_s <= t1; ++i) {
-    const double v = at(i).value;
-    if (!out)
-      out = PlotRange{v, v};
-    out->min = std::min(out->min, v);
-    out->max = std::max(out->max, v);
-  }
+  const std::size_t begin = lowerBound(t0);
+  const std::size_t end = lowerBound(std::nextafter(t1, t1 + 1.0));
+  if (begin >= end)
+    return std::nullopt;
+  PlotRange out{at(begin).value, at(begin).value};
+  forEach(begin, end, [&out](const PlotSample& s) {
+    out.min = std::min(out.min, s.value);
+    out.max = std::max(out.max, s.value);
+  });
   return out;
 }
 
@@ -72,35 +73,33 @@ std::vector<PlotColumn> PlotSeries::decimate(double t0, double t1, int columns) 
   const std::size_t count = end - begin;
   if (count <= static_cast<std::size_t>(columns)) {
     out.reserve(count);
-    for (std::size_t i = begin; i < end; ++i) {
-      const PlotSample& s = at(i);
+    forEach(begin, end, [&out](const PlotSample& s) {
       out.push_back({s.time_s, s.value, s.value, s.value, s.value});
-    }
+    });
     return out;
   }
   out.reserve(static_cast<std::size_t>(columns));
-  const double width_s = (t1 - t0) / columns;
+  const double per_s = columns / (t1 - t0);
   int current = -1;
-  for (std::size_t i = begin; i < end; ++i) {
-    const PlotSample& s = at(i);
-    const int column = std::clamp(static_cast<int>((s.time_s - t0) / width_s), 0, columns - 1);
+  forEach(begin, end, [&](const PlotSample& s) {
+    const int column = std::clamp(static_cast<int>((s.time_s - t0) * per_s), 0, columns - 1);
     if (column != current) {
       out.push_back({s.time_s, s.value, s.value, s.value, s.value});
       current = column;
-      continue;
+      return;
     }
     PlotColumn& c = out.back();
     c.min = std::min(c.min, s.value);
     c.max = std::max(c.max, s.value);
     c.last = s.value;
-  }
+  });
   return out;
 }
 
 std::vector<PlotSample> PlotSeries::samples(double t0, double t1) const {
   std::vector<PlotSample> out;
-  for (std::size_t i = lowerBound(t0); i < size_ && at(i).time_s <= t1; ++i)
-    out.push_back(at(i));
+  forEach(lowerBound(t0), lowerBound(std::nextafter(t1, t1 + 1.0)),
+          [&out](const PlotSample& s) { out.push_back(s); });
   return out;
 }
 

@@ -65,6 +65,26 @@ class PlotSeries {
   // The samples in [t0, t1], oldest first (exports).
   std::vector<PlotSample> samples(double t0, double t1) const;
 
+  // Calls f(sample) for the samples with logical indices [begin, end), oldest first, walking
+  // the ring's (at most two) contiguous spans: no index arithmetic per sample.
+  template <class F>
+  void forEach(std::size_t begin, std::size_t end, F&& f) const {
+    end = end < size_ ? end : size_;
+    if (begin >= end)
+      return;
+    const std::size_t cap = buffer_.size();
+    std::size_t physical = (head_ + begin) % cap;
+    std::size_t left = end - begin;
+    while (left > 0) {
+      const std::size_t run = left < cap - physical ? left : cap - physical;
+      const PlotSample* p = buffer_.data() + physical;
+      for (std::size_t i = 0; i < run; ++i)
+        f(p[i]);
+      left -= run;
+      physical = 0;
+    }
+  }
+
  private:
   std::vector<PlotSample> buffer_;
   std::size_t head_ = 0;  // physical index of the oldest sample

@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QSignalBlocker>
 #include <QSplitter>
 #include <QTimer>
 #include <QToolButton>
@@ -166,6 +167,11 @@ void PlotsDock::setAllPaused(bool paused) {
 void PlotsDock::setWindow_s(double window_s) {
   for (PlotPanel* p : panels_)
     p->setWindow_s(window_s);
+  const int index = window_choice_->findData(window_s);
+  if (index >= 0 && index != window_choice_->currentIndex()) {
+    const QSignalBlocker block(window_choice_);
+    window_choice_->setCurrentIndex(index);
+  }
 }
 
 void PlotsDock::refreshNow() {
