@@ -28,7 +28,7 @@ ParameterTable::ParameterTable(QWidget* parent) : QTreeWidget(parent) {
   setSelectionMode(QAbstractItemView::NoSelection);
   header()->setSectionResizeMode(kName, QHeaderView::ResizeToContents);
   header()->setSectionResizeMode(kValue, QHeaderView::Fixed);
-  header()->resizeSection(kValue, 120);
+  header()->resizeSection(kValue, 96);
   header()->setSectionResizeMode(kUnit, QHeaderView::ResizeToContents);
   header()->setSectionResizeMode(kRange, QHeaderView::ResizeToContents);
   header()->setSectionResizeMode(kDefault, QHeaderView::ResizeToContents);

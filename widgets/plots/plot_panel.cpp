@@ -58,10 +58,16 @@ QString lastComponent(const QString& key) {
   return parts.size() >= 2 ? parts[parts.size() - 2] + QLatin1Char(' ') + parts.back() : key;
 }
 
-QString legendText(const PlotTrace& trace) {
-  return trace.display_unit.isEmpty()
-             ? lastComponent(trace.key)
-             : QStringLiteral("%1 [%2]").arg(lastComponent(trace.key), trace.display_unit);
+// "Group name [unit]", or the whole key when another trace of the panel has the same short
+// name (telemetry and command velocity).
+QString legendText(const PlotTrace& trace, const std::vector<PlotTrace>& all) {
+  const QString short_name = lastComponent(trace.key);
+  const auto same = std::count_if(all.begin(), all.end(), [&](const PlotTrace& other) {
+    return lastComponent(other.key) == short_name;
+  });
+  const QString name = same > 1 ? trace.key : short_name;
+  return trace.display_unit.isEmpty() ? name
+                                      : QStringLiteral("%1 [%2]").arg(name, trace.display_unit);
 }
 
 // The y interval for data spanning `all`: 5 % padding; a flat or empty signal gets a small span.
@@ -272,7 +278,7 @@ void PlotPanel::paintTo(QPainter& painter, const QRect& area) const {
   std::vector<LegendEntry> entries;
   for (std::size_t i = 0; i < traces_.size(); ++i) {
     const PlotTrace& t = traces_[i];
-    QString text = legendText(t);
+    QString text = legendText(t, traces_);
     const PlotSeries* series = hub_.series(t.key);
     if (series != nullptr && !series->empty()) {
       text += QStringLiteral("  %1").arg(formatValue(series->newest().value * t.scale));

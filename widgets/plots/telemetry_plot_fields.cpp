@@ -31,7 +31,7 @@ std::vector<PlotFieldValue> telemetryPlotFields(const TelemetrySample& sample) {
   for (const SonarReading& reading : sample.sonar) {
     if (reading.echo) {
       out.push_back(
-          {QStringLiteral("Telemetry/Sonar/sonar %1").arg(reading.sensor, 2, 10, QLatin1Char('0')),
+          {QStringLiteral("Telemetry/Sonar/range %1").arg(reading.sensor, 2, 10, QLatin1Char('0')),
            QStringLiteral("m"), reading.range_m});
     }
   }

@@ -62,8 +62,8 @@ TEST(TelemetryPlotFields, ListsEveryNumericFieldOfASample) {
     keys << f.key;
   EXPECT_TRUE(keys.contains(QStringLiteral("Telemetry/Odometry pose/theta")));
   EXPECT_TRUE(keys.contains(QStringLiteral("Telemetry/True pose (simulator)/x")));
-  EXPECT_TRUE(keys.contains(QStringLiteral("Telemetry/Sonar/sonar 03")));
-  EXPECT_FALSE(keys.contains(QStringLiteral("Telemetry/Sonar/sonar 04")));  // no echo
+  EXPECT_TRUE(keys.contains(QStringLiteral("Telemetry/Sonar/range 03")));
+  EXPECT_FALSE(keys.contains(QStringLiteral("Telemetry/Sonar/range 04")));  // no echo
   EXPECT_TRUE(keys.contains(QStringLiteral("Telemetry/Gyro/temperature")));
   EXPECT_TRUE(keys.contains(QStringLiteral("Telemetry/Encoders/right")));
 }
@@ -194,7 +194,7 @@ TEST(PlotPanel, ExportsTheVisibleWindowAsCsvAndPng) {
   panel.resize(640, 320);
   feed(hub, 10.0, 0.5);
   panel.addField(QStringLiteral("Telemetry/Odometry pose/x"));
-  panel.addField(QStringLiteral("Telemetry/Sonar/sonar 03"));
+  panel.addField(QStringLiteral("Telemetry/Sonar/range 03"));
   panel.setWindow_s(2.0);  // t in [8, 10]: 5 samples
   const QString csv = dir.filePath(QStringLiteral("plot.csv"));
   ASSERT_EQ(panel.exportCsv(csv), QString());
@@ -204,7 +204,7 @@ TEST(PlotPanel, ExportsTheVisibleWindowAsCsvAndPng) {
   ASSERT_EQ(lines.size(), 6);
   EXPECT_EQ(
       lines[0],
-      QStringLiteral("time_s,\"Telemetry/Odometry pose/x [m]\",\"Telemetry/Sonar/sonar 03 [m]\""));
+      QStringLiteral("time_s,\"Telemetry/Odometry pose/x [m]\",\"Telemetry/Sonar/range 03 [m]\""));
   EXPECT_EQ(lines[1], QStringLiteral("8,0.8,1.25"));
   EXPECT_EQ(lines[5], QStringLiteral("10,1,1.25"));
 
