@@ -209,6 +209,8 @@ void LocalizationController::restart() {
     // wizard writes them into the profile); without them the filter integrates the raw rate
     // and its bias state has to absorb the error.
     config.gyro_calibration = profileGyroCalibration(session_.profile());
+    if (adjust_)
+      adjust_(config);
     if (*kind_ == EstimatorKind::kEncoderGyro && !config.gyro_calibration)
       session_.report(EventLevel::kInfo,
                       tr("Localization: the robot profile has no gyro calibration — the raw gyro "
@@ -240,6 +242,12 @@ void LocalizationController::syncUi() {
   state_->setText(
       kind_ ? (initial_pose_ ? tr("initial pose set by hand") : tr("initial pose: map start"))
             : QString());
+}
+
+void LocalizationController::setConfigAdjuster(ConfigAdjuster adjust) {
+  adjust_ = std::move(adjust);
+  if (kind_)
+    restart();
 }
 
 void LocalizationController::onSample(const TelemetrySample& sample) {

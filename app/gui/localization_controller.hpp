@@ -13,6 +13,7 @@
 #include <QObject>
 #include <QPointer>
 #include <QString>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -65,6 +66,10 @@ class LocalizationController : public QObject {
   void stepUpdate();
 
   const EstimatorRunner* runner() const { return runner_.get(); }
+  // Adjusts every estimator's configuration after the controller's defaults (the parameters
+  // panel: EKF gates, noise); restarts a running estimator so it takes effect. Empty: none.
+  using ConfigAdjuster = std::function<void(EstimatorRunnerConfig& config)>;
+  void setConfigAdjuster(ConfigAdjuster adjust);
   widgets::ErrorPlotPanel& plots() const { return *plots_; }
   QDockWidget& dock() const { return *dock_; }
   QMenu& menu() const { return *menu_; }
@@ -94,6 +99,7 @@ class LocalizationController : public QObject {
 
   std::unique_ptr<EstimatorRunner> runner_;
   std::optional<EstimatorKind> kind_;
+  ConfigAdjuster adjust_;
   std::optional<Pose2> initial_pose_;
   EstimatorStep last_with_readings_;  // the matches shown until the next firing
   bool warned_no_truth_ = false;

@@ -17,10 +17,13 @@
 
 #include "app/gui/app_settings.hpp"
 #include "app/gui/editor_controller.hpp"
+#include "app/gui/export_actions.hpp"
 #include "app/gui/link_ui.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
+#include "app/gui/parameters_controller.hpp"
 #include "app/gui/planning_controller.hpp"
+#include "app/gui/plots_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "app/gui/session_status_bar.hpp"
 #include "app/gui/shortcuts.hpp"
@@ -105,6 +108,10 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   side_splitter_->insertWidget(1, &link_ui_->healthPanel());
   side_splitter_->setStretchFactor(1, 0);
   side_splitter_->setStretchFactor(2, 1);
+  plots_ = new PlotsController(session_, *localization_, link_ui_->controller(), *this);
+  exports_ = new ExportActions(session_, *canvas_, link_ui_->controller(), *this);
+  parameters_ = new ParametersController(session_, *localization_, *planning_,
+                                         link_ui_->controller(), settings_, *this);
   connectSession();
 
   teleop_ = new widgets::KeyboardTeleop(this);
@@ -166,6 +173,7 @@ void MainWindow::buildLayout() {
 
 void MainWindow::buildFileMenu() {
   QMenu* menu = menuBar()->addMenu(tr("&File"));
+  menu->setObjectName(QStringLiteral("fileMenu"));  // ExportActions adds its submenu
   menu->addAction(map_files_->openAction());
   menu->addMenu(map_files_->recentMenu());
   menu->addSeparator();
@@ -180,6 +188,7 @@ void MainWindow::buildFileMenu() {
 
 void MainWindow::buildViewMenu() {
   QMenu* menu = menuBar()->addMenu(tr("&View"));
+  menu->setObjectName(QStringLiteral("viewMenu"));  // PlotsController adds its toggle
   QAction* fit = menu->addAction(tr("&Zoom to Fit"), canvas_, &MapCanvas::zoomToFit);
   fit->setShortcut(shortcuts::kZoomToFit);
 

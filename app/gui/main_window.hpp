@@ -23,10 +23,13 @@ class PlanningPanel;
 namespace irgs::gui {
 
 class EditorController;
+class ExportActions;
 class LinkUi;
 class LocalizationController;
 class MapFileActions;
+class ParametersController;
 class PlanningController;
+class PlotsController;
 class SessionController;
 class SessionStatusBar;
 
@@ -56,6 +59,12 @@ class MainWindow : public QMainWindow {
   LocalizationController& localization() const { return *localization_; }
   // The map editor ("Edit" tab).
   EditorController& editor() const { return *editor_; }
+  // The "Plots" dock: field browser and plot panels (View > Plots).
+  PlotsController& plots() const { return *plots_; }
+  // The "Parameters" dock: profile, algorithm and firmware parameters (View > Parameters).
+  ParametersController& parameters() const { return *parameters_; }
+  // File > Export: map view PNG/SVG, sonar grid as ROS map, session summary.
+  ExportActions& exports() const { return *exports_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -95,6 +104,9 @@ class MainWindow : public QMainWindow {
   LinkUi* link_ui_ = nullptr;
   LocalizationController* localization_ = nullptr;
   EditorController* editor_ = nullptr;
+  PlotsController* plots_ = nullptr;
+  ParametersController* parameters_ = nullptr;
+  ExportActions* exports_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

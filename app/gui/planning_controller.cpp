@@ -138,6 +138,13 @@ std::optional<Pose2> PlanningController::robotPose() const {
   return sample->odometry_pose;
 }
 
+void PlanningController::setSettings(const PlanningSettings& settings) {
+  const TravelTimeModel time_model = settings_.time_model;
+  settings_ = settings;
+  settings_.time_model = time_model;
+  world_grids_.reset();  // the resolution or clearance may have changed
+}
+
 std::optional<PlanningGrids> PlanningController::currentGrids() {
   const double radius = session_.profile().bodyRadius();
   try {

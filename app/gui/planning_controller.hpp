@@ -63,6 +63,9 @@ class PlanningController : public QObject {
   const MapBuildingBehaviour* mapBuilding() const;
   const std::optional<OccupancyGrid>& builtGrid() const { return built_grid_; }
   const PlanningSettings& settings() const { return settings_; }
+  // Replaces the settings (the parameters panel); the next plan uses them. The travel speeds
+  // (time_model) stay the controller's own.
+  void setSettings(const PlanningSettings& settings);
 
  signals:
   void goalPreviewChanged();

@@ -376,6 +376,18 @@ void SessionController::resetRobotToStart() {
          QStringLiteral("Robot reset to the start pose %1").arg(formatPose(map_.start)));
 }
 
+void SessionController::setMappingParameters(double grid_resolution_m,
+                                             std::optional<double> valid_distance_m) {
+  SonarMapper mapper(profile_, mapper_.model(), valid_distance_m);  // throws: nothing changed
+  OccupancyGrid grid(grid_resolution_m);
+  mapper_ = std::move(mapper);
+  valid_distance_m_ = valid_distance_m;
+  if (grid_resolution_m != grid_.resolution_m()) {
+    grid_ = std::move(grid);
+    emit gridReset();
+  }
+}
+
 void SessionController::resetGrid() {
   grid_ = OccupancyGrid(grid_.resolution_m());
   emit gridReset();

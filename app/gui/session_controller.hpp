@@ -73,6 +73,12 @@ class SessionController : public QObject {
   const QString& worldSource() const { return source_; }
   const RobotProfile& profile() const { return profile_; }
   const OccupancyGrid& grid() const { return grid_; }
+  // Mapping parameters (the parameters panel). A different grid resolution starts an empty grid
+  // (gridReset()); the sonar valid distance (nullopt: each sonar's max range) applies from the
+  // next sample. Throws std::invalid_argument as OccupancyGrid / SonarMapper do; the session is
+  // then unchanged.
+  void setMappingParameters(double grid_resolution_m, std::optional<double> valid_distance_m);
+  std::optional<double> sonarValidDistance_m() const { return valid_distance_m_; }
   // Integrates every sample still waiting (a slow machine may be behind the robot), so what is
   // written at exit holds all the robot sent — as a replay of the session's recording will.
   void integrateAllPending();
@@ -155,6 +161,7 @@ class SessionController : public QObject {
   RobotProfile profile_;
   RobotFactory factory_;
   SonarMapper mapper_;
+  std::optional<double> valid_distance_m_;
   std::unique_ptr<Robot> robot_;
   WorldMap map_;
   QString source_;

@@ -17,6 +17,7 @@
 #include "app/gui/link_format.hpp"
 #include "app/gui/link_ui.hpp"
 #include "app/gui/main_window.hpp"
+#include "app/gui/parameters_controller.hpp"
 #include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "comms/robot/arcos_robot.hpp"
@@ -139,6 +140,22 @@ QString StdinControl::execute(const QString& line) {
     const bool sent = command == QStringLiteral("move") ? link.moveDistance(*value)
                                                         : link.turnAngle(degToRad(*value));
     return sent ? ok : fail(QStringLiteral("no linked robot"));
+  }
+  if (command == QStringLiteral("param")) {
+    auto* params = link_.parent() == nullptr ? nullptr
+                                             : link_.parent()->findChild<ParametersController*>(
+                                                   QString(), Qt::FindDirectChildrenOnly);
+    if (params == nullptr)
+      return fail(QStringLiteral("no parameters panel in this window"));
+    if (words.size() == 2 && words[1] == QStringLiteral("read"))
+      return params->readFirmwareParameters() ? ok : fail(params->statusText());
+    const auto value = words.size() == 4 ? number(words[3]) : std::nullopt;
+    if (words.size() == 4 && words[1] == QStringLiteral("set") && value) {
+      // The command line is the operator's confirmation.
+      return params->writeFirmwareParameter(words[2], *value, false) ? ok
+                                                                     : fail(params->statusText());
+    }
+    return fail(QStringLiteral("usage: param read | param set NAME VALUE"));
   }
   if (command == QStringLiteral("connect")) {
     if (words.size() != 2)

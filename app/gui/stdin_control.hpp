@@ -8,6 +8,8 @@
 //   move M       firmware behaviour: drive M metres straight (linked robot)
 //   turn DEG     firmware behaviour: turn DEG degrees on the spot (linked robot)
 //   connect URL  switch to the robot link     simulator   back to the simulator
+//   param read | param set NAME VALUE   firmware parameters (linked robot; the Parameters dock):
+//                read all / write one (the answer reaches the console)
 //   mapbuild start|pause|resume|abort   the Plan tab's map-building buttons (any robot)
 //   mapbuild save FILE.yaml             the built map as ROS PGM + YAML (the Save button)
 //   screenshot FILE.png                 a PNG of the whole window

@@ -10,6 +10,7 @@
 #include <future>
 #include <stdexcept>
 #include <utility>
+#include <variant>
 
 namespace irgs::comms {
 
@@ -136,6 +137,9 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     assembler.tick(t);
     const std::lock_guard lock(mutex);
     moveReadyLocked();
+    params.setTarget(robot_system);
+    params.tick(t);
+    flushParamsLocked();
     if (!isZero(command) && t >= next_teleop_s) {
       sendTeleopLocked(t);
     }
@@ -154,6 +158,11 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     }
     if (frame.system_id != robot_system)
       return;
+    if (const auto value = frame.as<mav::ParamValue>()) {
+      const std::lock_guard lock(mutex);
+      params.onParamValue(*value, now());
+      return;
+    }
     assembler.onFrame(frame, now());
     if (assembler.hasReady()) {
       const std::lock_guard lock(mutex);
@@ -197,6 +206,13 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
       events.pop_front();
   }
 
+  void flushParamsLocked() {
+    for (const ParamOutgoing& message : params.takeOutgoing()) {
+      if (link != nullptr)
+        std::visit([this](const auto& m) { link->send(m); }, message);
+    }
+  }
+
   void sendTeleopLocked(double t) {
     if (link == nullptr)
       return;
@@ -224,6 +240,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
   std::uint64_t dropped_samples = 0;
   VelocityCommand command;
   double next_teleop_s = 0.0;
+  ParamClient params;
 };
 
 LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, RobotProfile profile,
@@ -392,6 +409,40 @@ void LinkedRobot::sendBehaviour(const RobotBehaviourCommand& command, CommandCal
     state_->command = {};
   }
   link_->sendCommand(c, std::move(done));
+}
+
+void LinkedRobot::requestParams() {
+  const std::lock_guard lock(state_->mutex);
+  state_->params.setTarget(state_->robot_system);
+  state_->params.requestAll(state_->now());
+  state_->flushParamsLocked();
+}
+
+void LinkedRobot::setParam(const std::string& name, double value) {
+  const std::lock_guard lock(state_->mutex);
+  state_->params.setTarget(state_->robot_system);
+  state_->params.set(name, value, state_->now());  // throws before anything is sent
+  state_->flushParamsLocked();
+}
+
+std::vector<ParamEntry> LinkedRobot::firmwareParams() const {
+  const std::lock_guard lock(state_->mutex);
+  return state_->params.params();
+}
+
+int LinkedRobot::firmwareParamCount() const {
+  const std::lock_guard lock(state_->mutex);
+  return state_->params.expectedCount();
+}
+
+bool LinkedRobot::readingParams() const {
+  const std::lock_guard lock(state_->mutex);
+  return state_->params.reading();
+}
+
+std::vector<ParamWriteResult> LinkedRobot::takeParamResults() {
+  const std::lock_guard lock(state_->mutex);
+  return state_->params.takeResults();
 }
 
 }  // namespace irgs::comms

@@ -33,6 +33,7 @@
 #include "comms/link/link.hpp"
 #include "comms/link/link_url.hpp"
 #include "comms/mavlink/messages.hpp"
+#include "comms/robot/param_client.hpp"
 #include "comms/robot/telemetry_assembler.hpp"
 #include "core/robot/robot.hpp"
 
@@ -101,6 +102,17 @@ class LinkedRobot final : public Robot {
   // Sends a behaviour command (acknowledged, retried); `done` runs on the io thread. Throws
   // std::invalid_argument for an invalid command (behaviourCommandLong) before sending anything.
   void sendBehaviour(const RobotBehaviourCommand& command, CommandCallback done = {});
+
+  // Firmware parameters (MAVLink parameter protocol, comms/robot/param_client.hpp): read all,
+  // write one (confirmed by the robot's PARAM_VALUE). Thread-safe; the answers arrive on the io
+  // thread and are read with firmwareParams() / takeParamResults().
+  void requestParams();
+  // Throws std::invalid_argument for a bad name or a non-finite value (nothing is sent).
+  void setParam(const std::string& name, double value);
+  std::vector<ParamEntry> firmwareParams() const;
+  int firmwareParamCount() const;  // param_count the robot announced (0 before any)
+  bool readingParams() const;
+  std::vector<ParamWriteResult> takeParamResults();
 
   struct State;  // shared with io-thread callbacks (linked_robot.cpp)
 

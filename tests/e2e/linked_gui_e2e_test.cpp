@@ -279,5 +279,56 @@ TEST_F(LinkedGuiEndToEnd, NoticesARobotRestartOnTheSamePathAndReconnectsOnItsOwn
   EXPECT_FALSE(flowing.empty());
 }
 
+// Issue 6, item 5: the Parameters dock's firmware section over the real link. Read every
+// parameter (PARAM_REQUEST_LIST), write MAX_SPEED (PARAM_SET), read back the value the firmware
+// reports, and check that the firmware applied it: full-stick teleop now runs at the new limit.
+TEST_F(LinkedGuiEndToEnd, ReadsAllFirmwareParametersWritesOneAndTheFirmwareAppliesIt) {
+  startRobot();
+  startGui();
+  ASSERT_FALSE(waitConnectedWithRates().empty());
+  // The next GUI line starting with `prefix` (console and answers), or nothing at the deadline.
+  auto waitLine = [&](const std::string& prefix, double timeout_s) -> std::optional<std::string> {
+    const auto deadline = Clock::now() + milliseconds(static_cast<int>(timeout_s * 1000));
+    while (auto line = gui_->readLine(deadline)) {
+      if (line->rfind(prefix, 0) == 0)
+        return line;
+    }
+    return std::nullopt;
+  };
+  gui_->writeLine("param read");
+  const auto read = waitLine("console info Firmware parameters read", 30.0);
+  ASSERT_TRUE(read) << "no answer to param read";
+  EXPECT_NE(read->find("(9 of 9)"), std::string::npos) << *read;
+  for (const char* name : {"TELEOP_TIMEOUT=", "HB_TIMEOUT=", "MAX_SPEED=", "MAX_TURN_RATE=",
+                           "SR_POSE=", "SR_SONAR=", "SR_CONTACT=", "SR_IMU=", "SR_STATUS="})
+    EXPECT_NE(read->find(name), std::string::npos) << name << " missing in: " << *read;
+
+  gui_->writeLine("param set MAX_SPEED 0.1");
+  const auto written = waitLine("console info Firmware parameter MAX_SPEED = 0.1 written", 30.0);
+  ASSERT_TRUE(written) << "the write was not confirmed";
+  gui_->writeLine("param read");
+  const auto again = waitLine("console info Firmware parameters read", 30.0);
+  ASSERT_TRUE(again);
+  EXPECT_NE(again->find("MAX_SPEED=0.1 "), std::string::npos) << *again;
+
+  // Full stick forward: the firmware scales MANUAL_CONTROL by its MAX_SPEED (the profile's 0.3 m/s
+  // before).
+  gui_->writeLine("drive 0.4 0");
+  waitDriving(20.0);
+  if (HasFatalFailure())
+    return;
+  const Fields steady = waitStatus([](const Fields& f) { return number(f, "v") > 0.08; }, 20.0,
+                                   "the robot to reach its new top speed");
+  ASSERT_FALSE(steady.empty());
+  double fastest = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    const Fields f = waitStatus([](const Fields&) { return true; }, 5.0, "a status line");
+    fastest = std::max(fastest, number(f, "v"));
+  }
+  std::printf("top speed with MAX_SPEED = 0.1: %.3f m/s\n", fastest);
+  EXPECT_LE(fastest, 0.1 + 0.01);
+  gui_->writeLine("stop");
+}
+
 }  // namespace
 }  // namespace irgs::test

@@ -118,6 +118,11 @@ class FirmwarePtyServer {
     const std::lock_guard lock(mutex_);
     return safety_;
   }
+  // The firmware's parameter table after the last step (what it applied).
+  app::ParamTable params() const {
+    const std::lock_guard lock(mutex_);
+    return params_;
+  }
   std::uint64_t droppedBytes() const { return dropped_bytes_.load(); }
 
  private:
@@ -162,6 +167,7 @@ class FirmwarePtyServer {
         odometry_[t_ms] = core_->simulator().odometryPose();
         true_pose_ = core_->simulator().truePose();
         safety_ = core_->safety();
+        params_ = core_->params();
         bool has_pose = false;
         for (const auto& f : frames) {
           if (f.message_id == mavlink::LocalPositionNed::kId ||
@@ -222,6 +228,7 @@ class FirmwarePtyServer {
   std::map<std::int64_t, Clock::time_point> emitted_;
   Pose2 true_pose_;
   app::SafetyState safety_;
+  app::ParamTable params_;
 
   std::thread thread_;  // last: started after everything it uses exists
 };

@@ -304,3 +304,58 @@ TEST(LinkedRobot, DriveRejectsANonFiniteCommand) {
 
 }  // namespace
 }  // namespace irgs::comms
+
+namespace irgs::comms {
+namespace {
+
+// The parameter protocol end to end: read all nine firmware parameters, write one in range
+// (the firmware applies it) and one out of range (the firmware keeps its value: rejected).
+TEST(LinkedRobot, ReadsAllFirmwareParametersAndWritesOneConfirmed) {
+  FirmwarePtyServer server(testing::makeFirmware({}, true), {});
+  IoThread io;
+  auto robot = openRobot(io, server.url());
+  Drain drain(*robot);
+  ASSERT_TRUE(drain.until([&] { return robot->linkState() == LinkState::kConnected; }));
+  robot->requestParams();
+  constexpr auto kCount = static_cast<int>(app::ParamTable::size());
+  ASSERT_TRUE(drain.until([&] {
+    return robot->firmwareParamCount() == kCount &&
+           static_cast<int>(robot->firmwareParams().size()) == kCount && !robot->readingParams();
+  }));
+  const std::vector<ParamEntry> params = robot->firmwareParams();
+  for (int i = 0; i < kCount; ++i) {
+    EXPECT_EQ(params[static_cast<std::size_t>(i)].index, i);
+    EXPECT_EQ(params[static_cast<std::size_t>(i)].name,
+              app::paramSpecs()[static_cast<std::size_t>(i)].name);
+  }
+  const auto hb = robot->firmwareParams()[static_cast<std::size_t>(app::ParamId::kHbTimeout)];
+  EXPECT_FLOAT_EQ(static_cast<float>(hb.value),
+                  static_cast<float>(server.params().get(app::ParamId::kHbTimeout)));
+
+  robot->setParam("HB_TIMEOUT", 2.5);
+  std::vector<ParamWriteResult> results;
+  ASSERT_TRUE(drain.until([&] {
+    for (auto& r : robot->takeParamResults())
+      results.push_back(r);
+    return !results.empty();
+  }));
+  EXPECT_EQ(results[0].status, ParamWriteStatus::kAccepted);
+  EXPECT_DOUBLE_EQ(server.params().get(app::ParamId::kHbTimeout), 2.5);
+  EXPECT_DOUBLE_EQ(
+      robot->firmwareParams()[static_cast<std::size_t>(app::ParamId::kHbTimeout)].value, 2.5);
+
+  results.clear();
+  robot->setParam("TELEOP_TIMEOUT", 5.0);  // outside [0.05, 0.45]
+  ASSERT_TRUE(drain.until([&] {
+    for (auto& r : robot->takeParamResults())
+      results.push_back(r);
+    return !results.empty();
+  }));
+  EXPECT_EQ(results[0].status, ParamWriteStatus::kRejected);
+  ASSERT_TRUE(results[0].applied.has_value());
+  EXPECT_NEAR(*results[0].applied, server.params().get(app::ParamId::kTeleopTimeout), 1e-6);
+  EXPECT_THROW(robot->setParam("A_NAME_LONGER_THAN_16", 1.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace irgs::comms
