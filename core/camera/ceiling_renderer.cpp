@@ -48,12 +48,13 @@ BodyScene bodyScene(const CeilingScene& scene, const Pose2& pose, double reach_m
 // Reflectance at body point p on the ceiling, or nothing for a light (which emits instead).
 std::optional<Albedo> albedoAt(const Vec2& p, const Vec2& p_world, const CeilingScene& scene,
                                const BodyScene& body) {
-  for (const auto& l : body.lights)
-    if (l.contains(p))
-      return std::nullopt;
+  // A paper marker stuck where a lamp is covers the lamp (maps put markers on light rows).
   for (const auto& m : body.markers)
     if (m.contains(p))
       return kMarkerRed;
+  for (const auto& l : body.lights)
+    if (l.contains(p))
+      return std::nullopt;
   for (const auto& d : body.decorations)
     if (d.rect.contains(p))
       return d.albedo;
