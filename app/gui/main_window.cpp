@@ -18,6 +18,7 @@
 #include "app/gui/app_settings.hpp"
 #include "app/gui/editor_controller.hpp"
 #include "app/gui/link_ui.hpp"
+#include "app/gui/camera_controller.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/planning_controller.hpp"
@@ -95,6 +96,7 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   buildViewMenu();
   buildSimulationMenu();
   localization_ = new LocalizationController(session_, *canvas_, *this);
+  camera_ = new CameraController(session_, *this);  // the "Camera" dock (View menu)
   // The map editor: the "Edit" tab, the tool layer on the canvas, autosave and recovery.
   editor_ = new EditorController(session_, *map_files_, *canvas_, *control_tabs_, *this);
   QTimer::singleShot(0, editor_, [this] { editor_->offerRecovery(); });
@@ -180,6 +182,7 @@ void MainWindow::buildFileMenu() {
 
 void MainWindow::buildViewMenu() {
   QMenu* menu = menuBar()->addMenu(tr("&View"));
+  menu->setObjectName(QStringLiteral("viewMenu"));
   QAction* fit = menu->addAction(tr("&Zoom to Fit"), canvas_, &MapCanvas::zoomToFit);
   fit->setShortcut(shortcuts::kZoomToFit);
 

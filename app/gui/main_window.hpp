@@ -22,6 +22,7 @@ class PlanningPanel;
 
 namespace irgs::gui {
 
+class CameraController;
 class EditorController;
 class LinkUi;
 class LocalizationController;
@@ -56,6 +57,8 @@ class MainWindow : public QMainWindow {
   LocalizationController& localization() const { return *localization_; }
   // The map editor ("Edit" tab).
   EditorController& editor() const { return *editor_; }
+  // The ceiling camera dock (issue 7).
+  CameraController& camera() const { return *camera_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -95,6 +98,7 @@ class MainWindow : public QMainWindow {
   LinkUi* link_ui_ = nullptr;
   LocalizationController* localization_ = nullptr;
   EditorController* editor_ = nullptr;
+  CameraController* camera_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

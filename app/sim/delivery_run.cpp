@@ -5,10 +5,13 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/camera/ceiling_camera_config.hpp"
+#include "core/camera/ceiling_scene.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/scenario/delivery_scenario.hpp"
 #include "core/scenario/scenario_outputs.hpp"
 #include "core/sim/sim_presets.hpp"
+#include "core/vision/vision_ceiling_observer.hpp"
 
 namespace irgs::app {
 namespace {
@@ -74,6 +77,20 @@ BehaviourRunOutcome runDeliveryMode(const SimOptions& options, const WorldMap& m
   spec.sim.seed = options.seed;
   spec.max_duration_s = options.duration_s.value_or(300.0);
   spec.wall_clock = clock;
+  if (options.observer == "vision") {
+    // The frames are rendered at the true pose and go through the OpenCV pipelines; the
+    // robot profile's ceiling_camera (or the default camera) says what the camera is.
+    const CeilingCameraConfigResult camera = ceilingCameraFromProfile(profile);
+    if (!camera.errors.empty()) {
+      outcome.exit_code = kExitBehaviourFailed;
+      outcome.error = "robot profile ceiling_camera: " + camera.errors.front();
+      return outcome;
+    }
+    RenderSettings render;
+    render.seed = options.seed;
+    spec.observer = std::make_shared<vision::VisionCeilingObserver>(
+        sceneFromMap(map), camera.config, vision::VisionConfig{}, render);
+  }
   DeliveryScenarioResult result = runDeliveryScenario(spec);
   if (!result.error.empty()) {
     outcome.exit_code = kExitBehaviourFailed;

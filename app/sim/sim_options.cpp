@@ -81,7 +81,9 @@ live sonar grid is built, then writes the results.
   --from N, --to N  start and goal node (id, or index in the graph) for --behaviour deliver;
                     the robot starts on the start node facing the map's start heading
   --observer O      what sees the ceiling for deliver: ideal (geometric projection of the
-                    map's markers and lights with seeded noise; default)
+                    map's markers and lights with seeded noise; default) or vision (frames
+                    rendered by the simulated ceiling camera of the robot profile, through the
+                    OpenCV marker and light pipelines)
   --goal X,Y        goal position in metres for --behaviour goal
   --compare FILE    with --behaviour mapbuild: also score the built map against a map an
                     earlier run saved (its grid.yaml), e.g. the in-process run of the same
@@ -167,8 +169,8 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
     } else if (arg == "--to") {
       options.to_node = value;
     } else if (arg == "--observer") {
-      if (value != "ideal")
-        return fail("--observer wants ideal, got '" + value + "'");
+      if (value != "ideal" && value != "vision")
+        return fail("--observer wants ideal or vision, got '" + value + "'");
       options.observer = value;
     } else if (arg == "--localize") {
       if (value != "ekf" && value != "dr" && value != "encoder-gyro")

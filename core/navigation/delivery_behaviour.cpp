@@ -1,5 +1,7 @@
 #include "core/navigation/delivery_behaviour.hpp"
 
+#include "core/camera/ceiling_camera_config.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -8,6 +10,9 @@ namespace irgs {
 
 DeliveryParams deliveryParamsFor(const RobotProfile& profile) {
   DeliveryParams p;
+  const CeilingCameraConfig camera = ceilingCameraFromProfile(profile).config;
+  p.navigator.tilt = camera.tilt;
+  p.tilt_rate_radps = camera.tilt_rate_radps;
   p.navigator.wheel_separation_m = profile.drive.wheelbase_m;
   p.navigator.cruise_speed_mps =
       std::min(p.navigator.cruise_speed_mps, 0.9 * profile.limits.max_speed_mps);
@@ -24,7 +29,7 @@ DeliveryBehaviour::DeliveryBehaviour(RoutePlan route, const RobotProfile& profil
     : navigator_(std::move(route), params.navigator),
       observer_(std::move(observer)),
       params_(params),
-      tilt_rad_(params.navigator.tilt.far_tilt_rad) {
+      servo_(params.navigator.tilt.min_tilt_rad, params.tilt_rate_radps) {
   if (!observer_)
     throw std::invalid_argument("DeliveryBehaviour: no ceiling observer");
   for (const SonarSpec& s : profile.sonars) {
@@ -45,9 +50,8 @@ VelocityCommand DeliveryBehaviour::onSample(const TelemetrySample& sample) {
   last_time_s_ = sample.time_s;
   // The servo moves toward the tilt asked for last.
   const double want =
-      navigator_.lastOutput().tilt_rad > 0.0 ? navigator_.lastOutput().tilt_rad : tilt_rad_;
-  const double step = params_.tilt_rate_radps * dt;
-  tilt_rad_ += std::clamp(want - tilt_rad_, -step, step);
+      navigator_.lastOutput().tilt_rad > 0.0 ? navigator_.lastOutput().tilt_rad : servo_.angleRad();
+  servo_.step(want, dt);
 
   NavigatorInput input;
   input.time_s = sample.time_s;
@@ -56,13 +60,14 @@ VelocityCommand DeliveryBehaviour::onSample(const TelemetrySample& sample) {
   const bool frame = sample.time_s + 1e-9 >= next_frame_s_;
   if (frame) {
     next_frame_s_ = sample.time_s + params_.camera_period_s;
-    observation_ = observer_->observe(sample.true_pose.value_or(sample.odometry_pose), tilt_rad_,
-                                      sample.time_s);
+    observation_ = observer_->observe(sample.true_pose.value_or(sample.odometry_pose),
+                                      servo_.angleRad(), sample.time_s);
     input.observation = &observation_;
   }
   const NavigatorOutput out = navigator_.update(input);
   if (frame) {
-    detections_.push_back({sample.time_s, tilt_rad_, static_cast<int>(observation_.markers.size()),
+    detections_.push_back({sample.time_s, servo_.angleRad(),
+                           static_cast<int>(observation_.markers.size()),
                            static_cast<int>(observation_.lights.size()),
                            navStateName(navigator_.state()), out.target_body});
   }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/behaviour/behaviour.hpp"
+#include "core/camera/tilt_servo.hpp"
 #include "core/navigation/landmark_navigator.hpp"
 #include "core/robot/robot_profile.hpp"
 
@@ -23,7 +24,8 @@ struct DeliveryParams {
   double tilt_rate_radps = 1.5;  // the tilt servo's speed
 };
 
-// Defaults fitted to a robot profile: the wheel separation and forward speed.
+// Defaults fitted to a robot profile: the wheel separation, forward and turn speed, and the
+// tilt law and servo rate of its "ceiling_camera" (defaults when it has none).
 DeliveryParams deliveryParamsFor(const RobotProfile& profile);
 
 // One camera frame as the behaviour used it.
@@ -48,7 +50,7 @@ class DeliveryBehaviour final : public Behaviour {
   const LandmarkNavigator& navigator() const { return navigator_; }
   const CeilingObservation& lastObservation() const { return observation_; }
   const std::vector<DetectionRecord>& detections() const { return detections_; }
-  double tilt_rad() const { return tilt_rad_; }
+  double tilt_rad() const { return servo_.angleRad(); }
 
  private:
   LandmarkNavigator navigator_;
@@ -59,7 +61,7 @@ class DeliveryBehaviour final : public Behaviour {
   CeilingObservation observation_;
   std::vector<DetectionRecord> detections_;
   double next_frame_s_ = 0.0;
-  double tilt_rad_ = 0.0;
+  TiltServo servo_;
   double last_time_s_ = 0.0;
 };
 

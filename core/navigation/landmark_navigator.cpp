@@ -140,7 +140,7 @@ void LandmarkNavigator::actAtMarker(const NavigatorInput& input) {
 
 NavigatorOutput LandmarkNavigator::update(const NavigatorInput& input) {
   NavigatorOutput out;
-  out.tilt_rad = params_.tilt.far_tilt_rad;
+  out.tilt_rad = params_.tilt.min_tilt_rad;
   const Pose2& odo = input.odometry;
   if (state_ == NavState::kArrived) {
     last_ = out;
@@ -170,7 +170,7 @@ NavigatorOutput LandmarkNavigator::update(const NavigatorInput& input) {
                      turnRate(odo.theta, turn_target_rad, params_.heading.max_turn_rate_radps)};
       out.wheels = wheelSpeedsFor(out.command.linear_mps, out.command.angular_radps,
                                   params_.wheel_separation_m);
-      out.tilt_rad = params_.tilt.near_tilt_rad;
+      out.tilt_rad = params_.tilt.max_tilt_rad;
       last_ = out;
       return out;
     }
@@ -183,7 +183,7 @@ NavigatorOutput LandmarkNavigator::update(const NavigatorInput& input) {
   if (state_ == NavState::kFollowMarker) {
     target = odo.toBody(*marker_);
     const double d = target.norm();
-    out.tilt_rad = tiltForDistance(params_.tilt, d);
+    out.tilt_rad = params_.tilt.tiltFor(d);
     const double rise = tiltRise(params_.tilt, out.tilt_rad);
     speed =
         params_.cruise_speed_mps - rise * (params_.cruise_speed_mps - params_.marker_min_speed_mps);
@@ -191,7 +191,7 @@ NavigatorOutput LandmarkNavigator::update(const NavigatorInput& input) {
       actAtMarker(input);
       out.command = {};
       out.wheels = {};
-      out.tilt_rad = params_.tilt.near_tilt_rad;
+      out.tilt_rad = params_.tilt.max_tilt_rad;
       last_ = out;
       return out;
     }

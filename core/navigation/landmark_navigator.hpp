@@ -31,7 +31,7 @@ enum class NavState { kDepart, kFollowMarker, kTurnAtMarker, kFollowLight, kStra
 const char* navStateName(NavState state);
 
 struct LandmarkNavigatorParams {
-  CameraTiltLaw tilt;
+  TiltLaw tilt{.near_m = 0.3, .far_m = 3.0};  // deliveryParamsFor takes the profile's
   AvoidanceParams avoidance;
   HeadingControlParams heading;
   double wheel_separation_m = 0.4;  // B of A002-4, for the wheel speeds reported

@@ -3,25 +3,26 @@
 #include <gtest/gtest.h>
 
 #include "core/geometry/types.hpp"
+#include "core/navigation/landmark_navigator.hpp"
 
 namespace irgs {
 namespace {
 
-TEST(CameraTilt, ThirtyFiveDegreesFarNinetyOverheadLinearBetween) {
-  const CameraTiltLaw law;  // 35 deg beyond 3 m, 90 deg within 0.3 m
-  EXPECT_NEAR(radToDeg(tiltForDistance(law, 10.0)), 35.0, 1e-9);
-  EXPECT_NEAR(radToDeg(tiltForDistance(law, 3.0)), 35.0, 1e-9);
-  EXPECT_NEAR(radToDeg(tiltForDistance(law, 0.0)), 90.0, 1e-9);
-  EXPECT_NEAR(radToDeg(tiltForDistance(law, 1.65)), 62.5, 1e-9);  // halfway
+TEST(CameraTilt, NavigationDefaultIsThirtyFiveDegreesFromThreeMetresToNinetyOverhead) {
+  const TiltLaw law = LandmarkNavigatorParams{}.tilt;
+  EXPECT_NEAR(radToDeg(law.tiltFor(10.0)), 35.0, 1e-9);
+  EXPECT_NEAR(radToDeg(law.tiltFor(3.0)), 35.0, 1e-9);
+  EXPECT_NEAR(radToDeg(law.tiltFor(0.0)), 90.0, 1e-9);
+  EXPECT_NEAR(radToDeg(law.tiltFor(1.65)), 62.5, 1e-9);  // halfway
 }
 
-TEST(CameraTilt, TiltFromVerticalIsZeroOverheadAndRiseGoesFromZeroToOne) {
-  const CameraTiltLaw law;
+TEST(CameraTilt, RiseGoesFromZeroFarToOneOverhead) {
+  const TiltLaw law = LandmarkNavigatorParams{}.tilt;
   EXPECT_NEAR(tiltFromVertical(degToRad(90.0)), 0.0, 1e-12);
-  EXPECT_NEAR(radToDeg(tiltFromVertical(degToRad(35.0))), 55.0, 1e-9);
-  EXPECT_NEAR(tiltRise(law, law.far_tilt_rad), 0.0, 1e-12);
-  EXPECT_NEAR(tiltRise(law, law.near_tilt_rad), 1.0, 1e-12);
+  EXPECT_NEAR(tiltRise(law, law.min_tilt_rad), 0.0, 1e-12);
+  EXPECT_NEAR(tiltRise(law, law.max_tilt_rad), 1.0, 1e-12);
   EXPECT_NEAR(tiltRise(law, degToRad(62.5)), 0.5, 1e-9);
+  EXPECT_NEAR(tiltRise(law, degToRad(20.0)), 0.0, 1e-12);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ Trace drive(const WorldMap& map, Pose2 pose) {
   const std::vector<SonarRay> sonar = {{Vec2::UnitX(), 4.0}};
   Trace trace;
   CeilingObservation obs;
-  double tilt = nav.params().tilt.far_tilt_rad;
+  double tilt = nav.params().tilt.min_tilt_rad;
   for (int k = 0; k < 6000 && !nav.arrived(); ++k) {
     const double t = 0.01 * k;
     NavigatorInput in;
