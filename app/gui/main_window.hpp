@@ -23,6 +23,7 @@ class PlanningPanel;
 namespace irgs::gui {
 
 class CameraController;
+class NavigationController;
 class EditorController;
 class LinkUi;
 class LocalizationController;
@@ -59,6 +60,8 @@ class MainWindow : public QMainWindow {
   EditorController& editor() const { return *editor_; }
   // The ceiling camera dock (issue 7).
   CameraController& camera() const { return *camera_; }
+  // Landmark navigation: the "Navigate" tab and the canvas overlay (issue 7).
+  NavigationController& navigation() const { return *navigation_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -99,6 +102,7 @@ class MainWindow : public QMainWindow {
   LocalizationController* localization_ = nullptr;
   EditorController* editor_ = nullptr;
   CameraController* camera_ = nullptr;
+  NavigationController* navigation_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

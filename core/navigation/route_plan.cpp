@@ -121,7 +121,7 @@ RoutePlan planRoute(const TopoGraph& graph, const std::string& start_id,
       const Vec2 in = pos(order[k]) - pos(order[k - 1]);
       const Vec2 out = pos(order[k + 1]) - pos(order[k]);
       step.turn_rad = wrapAngle(std::atan2(out.y(), out.x()) - std::atan2(in.y(), in.x()));
-      if (std::abs(step.turn_rad) < kStraightTolerance_rad)
+      if (std::abs(step.turn_rad) < kMarkerStraightTolerance_rad)
         step.action = MarkerAction::kStraight;
       else
         step.action = step.turn_rad > 0.0 ? MarkerAction::kLeft : MarkerAction::kRight;

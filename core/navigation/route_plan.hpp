@@ -33,7 +33,7 @@ struct RoutePlan {
 };
 
 // A turn smaller than this (either way) is "straight" at a marker.
-inline constexpr double kStraightTolerance_rad = 0.5235987755982988;  // 30 deg
+inline constexpr double kMarkerStraightTolerance_rad = 0.5235987755982988;  // 30 deg
 
 // A* with the straight-line heuristic (admissible: every edge costs at least its chord). Edges
 // marked bidirectional = false are travelled from -> to only. start == goal gives a one-step
