@@ -16,12 +16,14 @@
 #include <array>
 
 #include "app/gui/app_settings.hpp"
+#include "app/gui/camera_controller.hpp"
 #include "app/gui/editor_controller.hpp"
 #include "app/gui/export_actions.hpp"
 #include "app/gui/link_ui.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/parameters_controller.hpp"
+#include "app/gui/navigation_controller.hpp"
 #include "app/gui/planning_controller.hpp"
 #include "app/gui/plots_controller.hpp"
 #include "app/gui/session_controller.hpp"
@@ -98,6 +100,8 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   buildViewMenu();
   buildSimulationMenu();
   localization_ = new LocalizationController(session_, *canvas_, *this);
+  camera_ = new CameraController(session_, *this);  // the "Camera" dock (View menu)
+  navigation_ = new NavigationController(session_, *canvas_, *control_tabs_, this);  // "Navigate"
   // The map editor: the "Edit" tab, the tool layer on the canvas, autosave and recovery.
   editor_ = new EditorController(session_, *map_files_, *canvas_, *control_tabs_, *this);
   QTimer::singleShot(0, editor_, [this] { editor_->offerRecovery(); });

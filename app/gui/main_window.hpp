@@ -22,6 +22,8 @@ class PlanningPanel;
 
 namespace irgs::gui {
 
+class CameraController;
+class NavigationController;
 class EditorController;
 class ExportActions;
 class LinkUi;
@@ -65,6 +67,10 @@ class MainWindow : public QMainWindow {
   ParametersController& parameters() const { return *parameters_; }
   // File > Export: map view PNG/SVG, sonar grid as ROS map, session summary.
   ExportActions& exports() const { return *exports_; }
+  // The ceiling camera dock (issue 7).
+  CameraController& camera() const { return *camera_; }
+  // Landmark navigation: the "Navigate" tab and the canvas overlay (issue 7).
+  NavigationController& navigation() const { return *navigation_; }
 
   // Restores geometry, splitters, speeds and layers from the settings; without saved geometry
   // the window gets `default_size`.
@@ -107,6 +113,8 @@ class MainWindow : public QMainWindow {
   PlotsController* plots_ = nullptr;
   ParametersController* parameters_ = nullptr;
   ExportActions* exports_ = nullptr;
+  CameraController* camera_ = nullptr;
+  NavigationController* navigation_ = nullptr;
   SessionStatusBar* status_ = nullptr;
   QTimer* status_timer_ = nullptr;
 

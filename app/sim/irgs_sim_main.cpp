@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/sim/behaviour_run.hpp"
+#include "app/sim/delivery_run.hpp"
 #include "app/sim/linked_run.hpp"
 #include "app/sim/localization_run.hpp"
 #include "app/sim/sim_options.hpp"
@@ -246,6 +247,12 @@ int main(int argc, char** argv) {
       for (const auto& path : outcome.written)
         std::printf("  wrote %s\n", path.string().c_str());
     }
+    return outcome.exit_code;
+  }
+
+  if (options.behaviour == "deliver") {
+    const auto outcome = irgs::app::runDeliveryMode(options, *map.map, *robot.profile, wallSeconds);
+    printOutcome(outcome, options.quiet);
     return outcome.exit_code;
   }
 

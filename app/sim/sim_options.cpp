@@ -73,6 +73,17 @@ live sonar grid is built, then writes the results.
                     plan.csv (the planned turning points); metrics.json gains a "behaviour"
                     object (phases with times, turns, wall clock) and map_score (F1 of the
                     built map against the true map), plan or coverage
+                    deliver: landmark navigation of paper 002 (A* on the map's topological
+                    graph from --from to --to, ceiling markers and lights through the
+                    --observer camera, sonar avoidance); writes route.csv, detections.csv,
+                    states.csv, trajectory.csv every 0.5 s and metrics.json with a
+                    "delivery" object (success, time, distance, min clearance, collisions)
+  --from N, --to N  start and goal node (id, or index in the graph) for --behaviour deliver;
+                    the robot starts on the start node facing the map's start heading
+  --observer O      what sees the ceiling for deliver: ideal (geometric projection of the
+                    map's markers and lights with seeded noise; default) or vision (frames
+                    rendered by the simulated ceiling camera of the robot profile, through the
+                    OpenCV marker and light pipelines)
   --goal X,Y        goal position in metres for --behaviour goal
   --compare FILE    with --behaviour mapbuild: also score the built map against a map an
                     earlier run saved (its grid.yaml), e.g. the in-process run of the same
@@ -153,9 +164,17 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
                     value + "'");
       options.connect = value;
     } else if (arg == "--behaviour") {
-      if (value != "mapbuild" && value != "goal" && value != "coverage")
-        return fail("--behaviour wants mapbuild, goal or coverage, got '" + value + "'");
+      if (value != "mapbuild" && value != "goal" && value != "coverage" && value != "deliver")
+        return fail("--behaviour wants mapbuild, goal, coverage or deliver, got '" + value + "'");
       options.behaviour = value;
+    } else if (arg == "--from") {
+      options.from_node = value;
+    } else if (arg == "--to") {
+      options.to_node = value;
+    } else if (arg == "--observer") {
+      if (value != "ideal" && value != "vision")
+        return fail("--observer wants ideal or vision, got '" + value + "'");
+      options.observer = value;
     } else if (arg == "--localize") {
       if (value != "ekf" && value != "dr" && value != "encoder-gyro" && value != "mouse")
         return fail("--localize wants ekf, dr, encoder-gyro or mouse, got '" + value + "'");
@@ -216,7 +235,15 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
       return fail("--behaviour drives the robot itself; it cannot be combined with --script");
     if (options.behaviour == "goal" && !options.goal)
       return fail("--behaviour goal needs --goal X,Y");
+    if (options.behaviour == "deliver" && (options.from_node.empty() || options.to_node.empty()))
+      return fail("--behaviour deliver needs --from NODE and --to NODE");
+    if (options.behaviour == "deliver" && !options.connect.empty())
+      return fail(
+          "--behaviour deliver sees the ceiling through the simulated camera; it "
+          "cannot be combined with --connect");
   }
+  if ((!options.from_node.empty() || !options.to_node.empty()) && options.behaviour != "deliver")
+    return fail("--from and --to are only used with --behaviour deliver");
   if (!options.localize.empty() && (!options.connect.empty() || !options.behaviour.empty()))
     return fail(
         "--localize runs its own route in the simulator; it cannot be combined with "

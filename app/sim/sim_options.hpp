@@ -37,6 +37,11 @@ struct SimOptions {
   std::filesystem::path compare;
   // --localize ekf|dr|encoder-gyro: a localization experiment (app/sim/localization_run.hpp).
   std::string localize;
+  // --behaviour deliver: landmark navigation of 002_… on the map's topological graph from node
+  // --from to node --to (app/sim/delivery_run.hpp); --observer says what sees the ceiling.
+  std::string from_node;
+  std::string to_node;
+  std::string observer = "ideal";
   std::vector<Vec2> route;  // --route X,Y;X,Y;...: waypoints for --localize (default: map graph)
 };
 

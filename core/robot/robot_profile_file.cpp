@@ -138,7 +138,8 @@ bool nonNegative(double v) {
 
 const std::set<std::string> kTopKeys = {"format_version", "name",      "description",  "notes",
                                         "drive",          "limits",    "body_outline", "sonars",
-                                        "bumpers",        "proximity", "calibration",  "arcos"};
+                                        "bumpers",        "proximity", "calibration",  "arcos",
+                                        "ceiling_camera"};
 
 // Signed area (shoelace), > 0 for counter-clockwise.
 double signedArea(const std::vector<Vec2>& poly) {
@@ -496,6 +497,9 @@ RobotProfileResult parseRobotProfileJson(std::string_view text, const std::strin
   // checks them): kept as is, without a warning.
   if (const auto it = root.find("arcos"); it != root.end())
     profile.extra["arcos"] = *it;
+  // The ceiling camera of 002_… (core/camera/ceiling_camera_config.hpp reads and checks it).
+  if (const auto it = root.find("ceiling_camera"); it != root.end())
+    profile.extra["ceiling_camera"] = *it;
   crossChecks(r, profile);
   if (!hasErrors(result.diagnostics))
     result.profile = std::move(profile);

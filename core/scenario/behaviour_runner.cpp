@@ -77,6 +77,8 @@ BehaviourScenarioResult runBehaviourScenario(const BehaviourScenarioSpec& spec,
     b.phases.back().end_s = sample.time_s;
     if (spec.observer)
       spec.observer(sample, behaviour);
+    if (spec.simulator_probe)
+      spec.simulator_probe(sim);
 
     const bool finished = status.finished;
     if (step % rows_every == 0 || finished)

@@ -28,6 +28,9 @@ struct BehaviourScenarioSpec {
   std::function<double()> wall_clock;
   // Called after each step with the sample and the behaviour (GUI progress, tests); may be null.
   std::function<void(const TelemetrySample&, const Behaviour&)> observer;
+  // Called after each step with the simulator (ground-truth probes such as clearance); may be
+  // null.
+  std::function<void(const Simulator&)> simulator_probe;
 };
 
 struct PhaseSpan {

@@ -43,6 +43,11 @@ class SimWorld {
   // True when some geometry lies within distance_m of the segment ab.
   bool segmentWithin(const Vec2& a, const Vec2& b, double distance_m) const;
 
+  // The moving obstacles' outlines (world frame) at the current time; every query above sees
+  // them from now on, until the next call. Few and small, so they are tested without an index.
+  void setMovingPolygons(std::span<const std::vector<Vec2>> polygons);
+  bool hasMovingObstacles() const { return moving_.size() > 0; }
+
   std::size_t segmentCount() const { return grid_.segments().size(); }
   bool hasRaster() const { return raster_ != nullptr; }
 
@@ -51,6 +56,8 @@ class SimWorld {
   std::unique_ptr<RayCaster> segment_caster_;
   std::unique_ptr<SolidRaster> raster_;
   mutable std::vector<std::uint32_t> candidates_;
+  std::vector<Segment> moving_segments_;
+  PreparedSegments moving_;
 };
 
 }  // namespace irgs

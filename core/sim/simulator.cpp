@@ -10,7 +10,9 @@
 
 #include "core/estimation/mouse_odometry.hpp"
 #include "core/sim/diff_drive.hpp"
+#include "core/sim/geometry_queries.hpp"
 #include "core/sim/random.hpp"
+#include "core/world/moving_obstacle.hpp"
 
 namespace irgs {
 
@@ -28,6 +30,8 @@ constexpr int kCollisionBisections = 16;
 // Clearance is searched this far beyond what the body and the proximity rays can reach, so a
 // robot in open space re-checks only every kClearanceSlack_m of travel.
 constexpr double kClearanceSlack_m = 0.25;
+// A moving obstacle waits while its next position would come this close to the robot's body.
+constexpr double kMoverYield_m = 0.05;
 // A sensor is due when its time has come within this much (absorbs t = n * dt rounding).
 constexpr double kScheduleEpsilon_s = 1e-9;
 
@@ -152,6 +156,8 @@ struct Simulator::Impl {
 
   std::vector<SonarState> sonars;
   std::vector<ProximityState> proximity;
+  std::vector<double> mover_distance;  // metres travelled along each moving obstacle's path
+  std::vector<std::vector<Vec2>> mover_polygons;  // world frame, now
   double cos_max_incidence = 0.5;
 
   // Scratch, reused every step.
@@ -216,6 +222,58 @@ struct Simulator::Impl {
   void buildWorld() {
     world = std::make_unique<SimWorld>(map, SimWorldOptions{config.segment_caster, config.raster});
     clearance_fresh = false;
+    clearance = 0.0;
+    mover_distance.assign(map.moving_obstacles.size(), 0.0);
+    placeMovers();
+  }
+
+  void placeMovers() {
+    mover_polygons.resize(map.moving_obstacles.size());
+    for (std::size_t i = 0; i < mover_polygons.size(); ++i) {
+      const MovingObstacle& m = map.moving_obstacles[i];
+      mover_polygons[i] = movingObstaclePolygon(m, movingObstacleAt(m, mover_distance[i]));
+    }
+    world->setMovingPolygons(mover_polygons);
+  }
+
+  // Distance between two polygons (0 when they touch or one holds the other).
+  static double polygonDistance(std::span<const Vec2> a, std::span<const Vec2> b) {
+    if (a.empty() || b.empty())
+      return std::numeric_limits<double>::infinity();
+    if (pointInPolygon(a[0], b) || pointInPolygon(b[0], a))
+      return 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      for (std::size_t j = 0; j < b.size(); ++j)
+        best = std::min(
+            best, segmentSegmentDistance(a[i], a[(i + 1) % a.size()], b[j], b[(j + 1) % b.size()]));
+    }
+    return best;
+  }
+
+  // Moves every scripted obstacle on by one step. An obstacle whose next position would come
+  // within kMoverYield_m of the robot waits (people and carts stop for a robot), so every
+  // contact is one the robot drives into.
+  void moveMovers(double now) {
+    if (map.moving_obstacles.empty())
+      return;
+    const auto& outline = profile.body_outline;
+    body_world.resize(outline.size());
+    for (std::size_t i = 0; i < outline.size(); ++i)
+      body_world[i] = true_pose.toWorld(outline[i]);
+    for (std::size_t i = 0; i < mover_polygons.size(); ++i) {
+      const MovingObstacle& m = map.moving_obstacles[i];
+      if (now <= m.start_delay_s)
+        continue;
+      const double next = mover_distance[i] + m.speed_mps * config.dt_s;
+      std::vector<Vec2> polygon = movingObstaclePolygon(m, movingObstacleAt(m, next));
+      if (polygonDistance(polygon, body_world) <= kMoverYield_m)
+        continue;
+      mover_distance[i] = next;
+      mover_polygons[i] = std::move(polygon);
+    }
+    world->setMovingPolygons(mover_polygons);
+    clearance_fresh = false;  // the world moved: the cached bound no longer holds
     clearance = 0.0;
   }
 
@@ -423,6 +481,7 @@ struct Simulator::Impl {
 
   void step(TelemetrySample& sample) {
     const Pose2 before = true_pose;
+    moveMovers(time());
     move();
     ++steps;
     const double now = time();
@@ -524,6 +583,10 @@ std::uint32_t Simulator::bumpers() const {
 std::int64_t Simulator::stepCount() const {
   return impl_->steps;
 }
+const std::vector<std::vector<Vec2>>& Simulator::movingObstaclePolygons() const {
+  return impl_->mover_polygons;
+}
+
 const SimWorld& Simulator::world() const {
   return *impl_->world;
 }

@@ -114,6 +114,8 @@ class Simulator {
   std::uint32_t bumpers() const;
   std::int64_t stepCount() const;
   const SimWorld& world() const;
+  // Outlines (world frame) of the map's moving obstacles now, in map order.
+  const std::vector<std::vector<Vec2>>& movingObstaclePolygons() const;
 
  private:
   struct Impl;

@@ -47,6 +47,7 @@ class MapReader : private JsonFieldReader {
   void readMarkers(const json& root, WorldMap& map);
   void readLights(const json& root, WorldMap& map);
   void readGraph(const json& root, WorldMap& map);
+  void readMovingObstacles(const json& root, WorldMap& map);
   void checkPlausibility(const WorldMap& map);
 
   fs::path base_dir_;
@@ -92,9 +93,11 @@ std::optional<WorldMap> MapReader::readDocument() {
   readMarkers(root, map);
   readLights(root, map);
   readGraph(root, map);
-  map.extra = extras(root, "",
-                     {"format", "version", "name", "ceiling_height_m", "start", "raster", "walls",
-                      "obstacles", "features", "ceiling_markers", "ceiling_lights", "graph"});
+  readMovingObstacles(root, map);
+  map.extra = extras(
+      root, "",
+      {"format", "version", "name", "ceiling_height_m", "start", "raster", "walls", "obstacles",
+       "features", "ceiling_markers", "ceiling_lights", "graph", "moving_obstacles"});
   if (hasErrors(diagnostics()))
     return std::nullopt;
   checkPlausibility(map);
@@ -430,6 +433,57 @@ void MapReader::readGraph(const json& root, WorldMap& map) {
       edge.bidirectional = *bidirectional;
       map.graph.edges.push_back(std::move(edge));
     }
+  }
+}
+
+void MapReader::readMovingObstacles(const json& root, WorldMap& map) {
+  const json* movers = list(root, "moving_obstacles");
+  if (movers == nullptr)
+    return;
+  std::map<std::string, std::string> ids;
+  for (std::size_t i = 0; i < movers->size(); ++i) {
+    const std::string p = child("/moving_obstacles", i);
+    const json& o = (*movers)[i];
+    if (!expectObject(o, p,
+                      "a moving obstacle {\"polygon\": [[x, y], ...], \"path\": [[x, y], ...]}"))
+      continue;
+    MovingObstacle mover;
+    const auto mover_id = id(o, p, false, ids);
+    const json* poly =
+        member(o, p, "polygon", true, "[[x, y], ...] in metres around the obstacle's origin");
+    auto pv = poly ? points(*poly, child(p, "polygon")) : std::nullopt;
+    const json* path = member(o, p, "path", true, "[[x, y], ...] waypoints in metres");
+    auto wp = path ? points(*path, child(p, "path")) : std::nullopt;
+    const auto speed = positiveNumber(o, p, "speed_mps", mover.speed_mps, "metres per second");
+    const auto loop = boolean(o, p, "loop", mover.loop);
+    const auto delay_read = optionalNumber(o, p, "start_delay_s", mover.start_delay_s);
+    const double delay = delay_read.value_or(-1.0);
+    if (delay_read && delay < 0.0)
+      error(child(p, "start_delay_s"), "expected a delay >= 0 seconds, found a negative number");
+    mover.extra = extras(o, p, {"id", "polygon", "path", "speed_mps", "loop", "start_delay_s"});
+    if (pv && pv->size() < 3) {
+      error(child(p, "polygon"),
+            "a polygon needs at least 3 vertices, found " + std::to_string(pv->size()));
+      pv.reset();
+    } else if (pv && !(std::abs(signedArea2(*pv)) > 1e-12)) {
+      error(child(p, "polygon"), "the polygon encloses no area (its vertices are collinear)");
+      pv.reset();
+    }
+    if (wp && wp->empty()) {
+      error(child(p, "path"), "a path needs at least 1 waypoint, found none");
+      wp.reset();
+    }
+    if (!mover_id || !pv || !wp || !speed || !loop || delay < 0.0)
+      continue;
+    if (signedArea2(*pv) < 0.0)
+      std::reverse(pv->begin(), pv->end());  // stored counter-clockwise
+    mover.id = *mover_id;
+    mover.polygon = std::move(*pv);
+    mover.path = std::move(*wp);
+    mover.speed_mps = *speed;
+    mover.loop = *loop;
+    mover.start_delay_s = delay;
+    map.moving_obstacles.push_back(std::move(mover));
   }
 }
 

@@ -158,6 +158,26 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
   appendExtra(graph, map.graph.extra);
   root["graph"] = std::move(graph);
 
+  // Optional layer: written only when present, so maps without it keep their bytes.
+  if (!map.moving_obstacles.empty()) {
+    OrderedJson movers = OrderedJson::array();
+    for (std::size_t i = 0; i < map.moving_obstacles.size(); ++i) {
+      const MovingObstacle& m = map.moving_obstacles[i];
+      const std::string p = child("/moving_obstacles", i);
+      OrderedJson o = OrderedJson::object();
+      if (!m.id.empty())
+        o["id"] = m.id;
+      o["polygon"] = pointsJson(m.polygon, child(p, "polygon"));
+      o["path"] = pointsJson(m.path, child(p, "path"));
+      o["speed_mps"] = finite(m.speed_mps, child(p, "speed_mps"));
+      o["loop"] = m.loop;
+      o["start_delay_s"] = finite(m.start_delay_s, child(p, "start_delay_s"));
+      appendExtra(o, m.extra);
+      movers.push_back(std::move(o));
+    }
+    root["moving_obstacles"] = std::move(movers);
+  }
+
   appendExtra(root, map.extra);
   return root;
 }

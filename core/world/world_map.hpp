@@ -74,6 +74,22 @@ struct TopoGraph {
   nlohmann::json extra = nlohmann::json::object();
 };
 
+// An obstacle that moves on a scripted path (paper 002's dynamic obstacles: people, carts). The
+// polygon is in the obstacle's own frame and is translated (not rotated) so that its origin
+// follows `path` at `speed_mps`, starting at path[0] after `start_delay_s`. With `loop` the path
+// closes back to its first point and repeats (two points = back and forth); without it the
+// obstacle stops at the last point. Position at a time: movingObstaclePosition
+// (core/world/moving_obstacle.hpp).
+struct MovingObstacle {
+  std::string id;
+  std::vector<Vec2> polygon;  // counter-clockwise after load
+  std::vector<Vec2> path;     // at least 1 point (one point: it stands still)
+  double speed_mps = 0.5;
+  bool loop = true;
+  double start_delay_s = 0.0;
+  nlohmann::json extra = nlohmann::json::object();
+};
+
 // A raster layer: a ROS map referenced by the JSON map (path relative to the map file).
 struct RasterLayer {
   std::string source;  // as written in the file
@@ -94,6 +110,7 @@ struct WorldMap {
   std::vector<CeilingMarker> markers;
   std::vector<CeilingLight> lights;
   TopoGraph graph;
+  std::vector<MovingObstacle> moving_obstacles;  // simulated only; not in segments()
   Pose2 start;
   std::optional<RasterLayer> raster;
   double ceiling_height_m = 2.5;

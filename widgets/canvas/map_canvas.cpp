@@ -82,6 +82,11 @@ void MapCanvas::setPlanningOverlay(PlanningOverlay overlay) {
   update();
 }
 
+void MapCanvas::setNavigationOverlay(NavigationOverlay overlay) {
+  navigation_overlay_ = std::move(overlay);
+  update();
+}
+
 void MapCanvas::setEstimatorOverlay(EstimatorOverlay overlay) {
   estimator_overlay_ = std::move(overlay);
   update();
@@ -308,6 +313,8 @@ void MapCanvas::paintEvent(QPaintEvent* /*event*/) {
     robot_.paintRobot(p, v, *true_pose_, bumpers_, true);
   if (pose_)
     robot_.paintRobot(p, v, *pose_, bumpers_, false);
+  if (!navigation_overlay_.empty())
+    paintNavigationOverlay(p, v, navigation_overlay_);
   if (!estimator_overlay_.empty())
     paintEstimatorOverlay(p, v, estimator_overlay_);
   if (region_from_)

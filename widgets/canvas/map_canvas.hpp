@@ -36,6 +36,7 @@
 #include "widgets/canvas/grid_tiles.hpp"
 #include "widgets/canvas/map_layers_painter.hpp"
 #include "widgets/canvas/map_view.hpp"
+#include "widgets/canvas/navigation_overlay.hpp"
 #include "widgets/canvas/path_overlay.hpp"
 #include "widgets/canvas/robot_painter.hpp"
 #include "widgets/canvas/static_layer_cache.hpp"
@@ -112,6 +113,9 @@ class MapCanvas : public QWidget {
   // Localization overlay (estimator poses with ellipses, matched features), drawn over the robot.
   void setEstimatorOverlay(EstimatorOverlay overlay);
   const EstimatorOverlay& estimatorOverlay() const { return estimator_overlay_; }
+  // Landmark-navigation overlay (route, state, avoidance vectors, moving obstacles).
+  void setNavigationOverlay(NavigationOverlay overlay);
+  const NavigationOverlay& navigationOverlay() const { return navigation_overlay_; }
 
   QSize sizeHint() const override { return {800, 600}; }
   QSize minimumSizeHint() const override { return {200, 150}; }
@@ -182,6 +186,7 @@ class MapCanvas : public QWidget {
   // Planning overlay and modes.
   PlanningOverlay overlay_;
   EstimatorOverlay estimator_overlay_;
+  NavigationOverlay navigation_overlay_;
   Interaction interaction_ = Interaction::kNavigate;
   QPointF press_pos_;                      // where the left button went down (pick goal)
   std::optional<irgs::Vec2> region_from_;  // select region: drag start and current corner

@@ -143,9 +143,10 @@ std::vector<std::string> bundledMapNames() {
   return names;
 }
 
-TEST(BundledMaps, AllSixMapsArePresent) {
+TEST(BundledMaps, AllBundledMapsArePresent) {
   const std::vector<std::string> expected = {
       "corridor_000_table1.json",        "default.json",
+      "delivery_floor_002.json",         "delivery_floor_002_people.json",
       "thesis_arena_250.json",           "thesis_sim1_loop.json",
       "thesis_sim2_four_obstacles.json", "thesis_sim3_five_obstacles.json"};
   EXPECT_EQ(bundledMapNames(), expected);
@@ -196,6 +197,54 @@ TEST(BundledMaps, StartPosesAndGraphNodesAreInFreeSpaceAndConnected) {
       for (const Segment& s : segments)
         EXPECT_FALSE(segmentsIntersect(edge, s)) << "edge " << e.from << "-" << e.to;
     }
+  }
+}
+
+TEST(BundledMaps, DeliveryFloorHasMarkersAtNodesLightsAlongEdgesAndATAndAnLJunction) {
+  for (const char* name : {"delivery_floor_002.json", "delivery_floor_002_people.json"}) {
+    SCOPED_TRACE(name);
+    const WorldMap map = load(name);
+    ASSERT_EQ(map.graph.nodes.size(), 7u);
+    std::map<std::string, Vec2> markers, nodes;
+    for (const CeilingMarker& m : map.markers)
+      markers[m.id] = m.position;
+    std::map<std::string, int> degree;
+    for (const TopoNode& n : map.graph.nodes) {
+      nodes[n.id] = n.position;
+      ASSERT_FALSE(n.marker_id.empty()) << n.id;
+      EXPECT_LT((markers.at(n.marker_id) - n.position).norm(), 1e-9) << n.id;
+    }
+    for (const TopoEdge& e : map.graph.edges) {
+      ++degree[e.from];
+      ++degree[e.to];
+    }
+    EXPECT_EQ(degree["1"], 3);  // T junctions
+    EXPECT_EQ(degree["4"], 3);
+    EXPECT_EQ(degree["2"], 2);  // L junctions
+    EXPECT_EQ(degree["3"], 2);
+    EXPECT_EQ(degree["0"], 1);  // start and goal are dead ends
+    EXPECT_EQ(degree["6"], 1);
+    // Every light lies on an edge (a light row) and every edge has lights.
+    std::map<std::pair<std::string, std::string>, int> lit;
+    for (const CeilingLight& l : map.lights) {
+      bool on_edge = false;
+      for (const TopoEdge& e : map.graph.edges) {
+        const Vec2 a = nodes.at(e.from), b = nodes.at(e.to);
+        if (distanceToSegment(l.tube.a, Segment{a, b}) < 1e-6 &&
+            distanceToSegment(l.tube.b, Segment{a, b}) < 1e-6) {
+          on_edge = true;
+          ++lit[{e.from, e.to}];
+        }
+      }
+      EXPECT_TRUE(on_edge) << l.id;
+    }
+    EXPECT_EQ(lit.size(), map.graph.edges.size());
+  }
+  const WorldMap people = load("delivery_floor_002_people.json");
+  ASSERT_EQ(people.moving_obstacles.size(), 3u);
+  for (const MovingObstacle& m : people.moving_obstacles) {
+    for (const Vec2& p : m.path)
+      EXPECT_GE(people.distanceToNearestSegment(p), 0.3) << m.id;
   }
 }
 
