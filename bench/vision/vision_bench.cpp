@@ -7,6 +7,7 @@
 //                vertices, template matching)
 //   Light        top view + the light pipeline (darken, binarise, erode, dilate, label)
 //   Both         CeilingVision::process: one top view, both pipelines (what the observer runs)
+//   RenderFrame  for scale: core/camera's renderer on the same views, 1 and 2 x 2 rays per pixel
 
 #include <benchmark/benchmark.h>
 
@@ -113,10 +114,28 @@ void BM_BothPipelines(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// For scale: rendering one frame of the same corridor (core/camera), at 1 and 2 x 2 rays per
+// pixel (the GUI and VisionCeilingObserver's defaults).
+void BM_RenderFrame(benchmark::State& state) {
+  const CeilingScene scene = corridor();
+  const auto& fs = frames();
+  RenderSettings s;
+  s.supersample = static_cast<int>(state.range(0));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Frame& f = fs[i++ % fs.size()];
+    const RgbImage img =
+        renderCeiling(f.view, scene, Pose2{0.3 * static_cast<double>(i), 0.0, 0.0}, s);
+    benchmark::DoNotOptimize(img.data.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 BENCHMARK(BM_Floor_WarpPerspective_CvtColor)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MarkerPipeline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LightPipeline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BothPipelines)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RenderFrame)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
