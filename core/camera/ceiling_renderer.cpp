@@ -230,19 +230,36 @@ RgbImage renderCeiling(const CeilingView& view, const CeilingScene& scene, const
   const double corner2 = cx * cx + cy * cy;
   const double pc = std::cos(robot_pose.theta), ps = std::sin(robot_pose.theta);
 
+  // The glow varies slowly: computed every kGlowStep pixels, interpolated bilinearly between.
+  constexpr int kGlowStep = 4;
+  const int gw = w / kGlowStep + 2, gh = h / kGlowStep + 2;
+  std::vector<double> glow_grid(static_cast<std::size_t>(gw) * static_cast<std::size_t>(gh), 0.0);
+  if (!body.lights.empty()) {
+    for (int j = 0; j < gh; ++j)
+      for (int i = 0; i < gw; ++i)
+        if (const auto c = view.backProject(Vec2(i * kGlowStep, j * kGlowStep))) {
+          double g = 0.0;
+          for (const auto& l : body.lights)
+            g = std::max(g, std::exp(-l.distance(*c) / s.glow_radius_m));
+          glow_grid[static_cast<std::size_t>(j * gw + i)] = g;
+        }
+  }
+  auto glowAt = [&](int u, int v) {
+    const int i = u / kGlowStep, j = v / kGlowStep;
+    const double fu = static_cast<double>(u - i * kGlowStep) / kGlowStep;
+    const double fv = static_cast<double>(v - j * kGlowStep) / kGlowStep;
+    auto at = [&](int a, int b) { return glow_grid[static_cast<std::size_t>(b * gw + a)]; };
+    return (1 - fv) * ((1 - fu) * at(i, j) + fu * at(i + 1, j)) +
+           fv * ((1 - fu) * at(i, j + 1) + fu * at(i + 1, j + 1));
+  };
+
   std::vector<Rgb> img(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {
       // Illumination at the pixel centre: ambient, glow from the nearest lights, vignetting.
       const double r2 = ((u - cx) * (u - cx) + (v - cy) * (v - cy)) / corner2;
       const double vignette = 1.0 - s.vignetting * r2;
-      double illum = s.ambient;
-      if (const auto centre = view.backProject(Vec2(u, v))) {
-        double glow = 0.0;
-        for (const auto& l : body.lights)
-          glow = std::max(glow, std::exp(-l.distance(*centre) / s.glow_radius_m));
-        illum += s.glow * glow;
-      }
+      const double illum = s.ambient + s.glow * glowAt(u, v);
       const double gain = 255.0 * s.exposure * vignette;
       Rgb sum;
       for (int j = 0; j < ss; ++j) {
