@@ -16,9 +16,9 @@
 #include <array>
 
 #include "app/gui/app_settings.hpp"
+#include "app/gui/camera_controller.hpp"
 #include "app/gui/editor_controller.hpp"
 #include "app/gui/link_ui.hpp"
-#include "app/gui/camera_controller.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/planning_controller.hpp"
