@@ -155,6 +155,7 @@ bool CameraController::showFrameAt(const Pose2& pose, double time_s) {
   observer_->observe(pose, tilt, time_s);
   panel_->showFrame(panelFrame(*observer_, time_s));
   last_frame_time_s_ = time_s;
+  wall_since_frame_.start();
   ++frames_shown_;
   return true;
 }
@@ -167,8 +168,9 @@ void CameraController::onSample(const TelemetrySample& sample) {
       panel_->showMessage(tr("No simulated camera: this robot reports no ground truth"));
     return;
   }
-  if (last_frame_time_s_ && sample.time_s - *last_frame_time_s_ < kFramePeriodS &&
-      sample.time_s >= *last_frame_time_s_)
+  if (last_frame_time_s_ && sample.time_s >= *last_frame_time_s_ &&
+      (sample.time_s - *last_frame_time_s_ < kFramePeriodS ||
+       (wall_since_frame_.isValid() && wall_since_frame_.elapsed() < min_wall_period_ms_)))
     return;
   showFrameAt(*sample.true_pose, sample.time_s);
 }

@@ -9,6 +9,7 @@
 // Needs ground truth (simulator mode): a linked robot's samples carry none; the panel then says
 // so (a live camera would be read through irgs_vision_io, see irgs-vision-eval --device).
 
+#include <QElapsedTimer>
 #include <QObject>
 #include <memory>
 #include <optional>
@@ -36,6 +37,9 @@ class CameraController : public QObject {
 
  public:
   static constexpr double kFramePeriodS = 0.25;  // simulated time between frames (4 Hz)
+  // Wall-clock floor between frames by default: at fast simulation speeds the GUI thread still
+  // renders at most 5 frames per second.
+  static constexpr int kDefaultMinWallPeriodMs = 200;
 
   // Adds the "Camera" dock (hidden until shown from the View menu) to `window`, and its toggle
   // to the window's View menu when there is one (objectName "viewMenu").
@@ -53,6 +57,7 @@ class CameraController : public QObject {
   // camera (the farthest tilt when none is within reach).
   double autoTiltRad(const Pose2& pose) const;
   int framesShown() const { return frames_shown_; }
+  void setMinWallPeriodMs(int ms) { min_wall_period_ms_ = ms; }
 
  private:
   void rebuild();
@@ -64,6 +69,8 @@ class CameraController : public QObject {
   CeilingCameraConfig camera_;
   std::unique_ptr<vision::VisionCeilingObserver> observer_;
   std::optional<double> last_frame_time_s_;
+  QElapsedTimer wall_since_frame_;
+  int min_wall_period_ms_ = kDefaultMinWallPeriodMs;
   int frames_shown_ = 0;
 };
 

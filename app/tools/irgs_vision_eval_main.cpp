@@ -192,6 +192,14 @@ int evaluate(const Options& o, const CeilingCameraConfig& camera, const VisionCo
   std::printf("| light-centre error mean / RMS / max, mm | %s / %s / %s |\n",
               mm(d.light_centre.mean_m).c_str(), mm(d.light_centre.rms_m).c_str(),
               mm(d.light_centre.max_m).c_str());
+  std::printf(
+      "\nMarker recall by horizontal distance from the camera (all tilts; the working "
+      "range is %.1f m)\n| distance | markers | found | recall |\n|---|---:|---:|---:|\n",
+      camera.working_range_m);
+  for (std::size_t b = 0; b < d.band_markers.size(); ++b)
+    if (d.band_markers[b] > 0)
+      std::printf("| %zu-%zu m | %d | %d | %.3f |\n", b, b + 1, d.band_markers[b], d.band_found[b],
+                  static_cast<double>(d.band_found[b]) / d.band_markers[b]);
   if (o.check && (d.recall() < 0.95 || d.precision() < 0.99)) {
     std::fprintf(stderr, "check failed: recall %.4f (>= 0.95), precision %.4f (>= 0.99)\n",
                  d.recall(), d.precision());

@@ -13,11 +13,37 @@ struct Rgb {
   double r = 0.0, g = 0.0, b = 0.0;
 };
 
+// A rectangle with its orientation's sine and cosine computed once (the per-ray tests are the
+// renderer's inner loop).
+struct PreparedRect {
+  Vec2 centre;
+  double c, s, half_length, half_width;
+  Albedo albedo;
+
+  explicit PreparedRect(const CeilingRect& r, Albedo a = {})
+      : centre(r.centre),
+        c(std::cos(r.heading_rad)),
+        s(std::sin(r.heading_rad)),
+        half_length(0.5 * r.length_m),
+        half_width(0.5 * r.width_m),
+        albedo(a) {}
+  bool contains(const Vec2& p) const {
+    const double dx = p.x() - centre.x(), dy = p.y() - centre.y();
+    return std::abs(c * dx + s * dy) <= half_length && std::abs(-s * dx + c * dy) <= half_width;
+  }
+  double distance(const Vec2& p) const {
+    const double dx = p.x() - centre.x(), dy = p.y() - centre.y();
+    const double ex = std::max(std::abs(c * dx + s * dy) - half_length, 0.0);
+    const double ey = std::max(std::abs(-s * dx + c * dy) - half_width, 0.0);
+    return std::hypot(ex, ey);
+  }
+};
+
 // The scene in the robot's body frame, only what can matter for this frame.
 struct BodyScene {
-  std::vector<CeilingRect> markers;
-  std::vector<CeilingRect> lights;
-  std::vector<PaintedRect> decorations;
+  std::vector<PreparedRect> markers;
+  std::vector<PreparedRect> lights;
+  std::vector<PreparedRect> decorations;
 };
 
 CeilingRect toBody(const CeilingRect& r, const Pose2& pose) {
@@ -27,21 +53,66 @@ CeilingRect toBody(const CeilingRect& r, const Pose2& pose) {
   return b;
 }
 
-// Everything within `reach_m` of the camera (rectangles are tested by their circumradius).
-BodyScene bodyScene(const CeilingScene& scene, const Pose2& pose, double reach_m) {
+// The body-frame bounding box of the ceiling the image can show: the image border's rays on the
+// ceiling, a ray that misses it (or lands farther than `reach_m`) taken out to `reach_m`.
+struct Box {
+  Vec2 lo{1e300, 1e300};
+  Vec2 hi{-1e300, -1e300};
+  void add(const Vec2& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  // Whether a disc of radius r at c can touch the box.
+  bool touches(const Vec2& c, double r) const {
+    return c.x() + r >= lo.x() && c.x() - r <= hi.x() && c.y() + r >= lo.y() && c.y() - r <= hi.y();
+  }
+};
+
+Box footprint(const CeilingView& view, double reach_m) {
+  Box box;
+  const Vec2 mount(view.mount().x_m, view.mount().y_m);
+  const int w = view.intrinsics().width_px, h = view.intrinsics().height_px;
+  auto add = [&](double u, double v) {
+    const Eigen::Vector3d d = view.rayBody(Vec2(u, v));
+    const Vec2 horizontal(d.x(), d.y());
+    const double hn = horizontal.norm();
+    Vec2 p = mount;
+    if (d.z() > 1e-9 && view.heightAboveCameraM() / d.z() * hn <= reach_m)
+      p += view.heightAboveCameraM() / d.z() * horizontal;
+    else if (hn > 1e-12)
+      p += reach_m / hn * horizontal;
+    box.add(p);
+  };
+  constexpr int kSteps = 16;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double u = -0.5 + w * static_cast<double>(i) / kSteps;
+    const double v = -0.5 + h * static_cast<double>(i) / kSteps;
+    add(u, -0.5);
+    add(u, h - 0.5);
+    add(-0.5, v);
+    add(w - 0.5, v);
+  }
+  box.add(mount);
+  return box;
+}
+
+// Everything that can show in the frame (rectangles are tested by their circumradius; lights
+// by their glow's reach as well).
+BodyScene bodyScene(const CeilingScene& scene, const Pose2& pose, const Box& box,
+                    double light_margin_m) {
   BodyScene out;
-  auto near = [&](const CeilingRect& r) {
-    return (r.centre - pose.position()).norm() - 0.5 * std::hypot(r.length_m, r.width_m) < reach_m;
+  auto visible = [&](const CeilingRect& body, double margin) {
+    return box.touches(body.centre, 0.5 * std::hypot(body.length_m, body.width_m) + margin);
   };
   for (const auto& m : scene.markers)
-    if (near(m))
-      out.markers.push_back(toBody(m, pose));
+    if (const CeilingRect b = toBody(m, pose); visible(b, 0.0))
+      out.markers.emplace_back(b);
   for (const auto& l : scene.lights)
-    if (near(l))
-      out.lights.push_back(toBody(l, pose));
+    if (const CeilingRect b = toBody(l, pose); visible(b, light_margin_m))
+      out.lights.emplace_back(b);
   for (const auto& d : scene.decorations)
-    if (near(d.rect))
-      out.decorations.push_back({toBody(d.rect, pose), d.albedo});
+    if (const CeilingRect b = toBody(d.rect, pose); visible(b, 0.0))
+      out.decorations.emplace_back(b, d.albedo);
   return out;
 }
 
@@ -56,7 +127,7 @@ std::optional<Albedo> albedoAt(const Vec2& p, const Vec2& p_world, const Ceiling
     if (l.contains(p))
       return std::nullopt;
   for (const auto& d : body.decorations)
-    if (d.rect.contains(p))
+    if (d.contains(p))
       return d.albedo;
   Albedo a = scene.ceiling;
   if (scene.tile_size_m > 0.0) {
@@ -151,12 +222,36 @@ RgbImage renderCeiling(const CeilingView& view, const CeilingScene& scene, const
                        const RenderSettings& s) {
   const int w = view.intrinsics().width_px, h = view.intrinsics().height_px;
   const int ss = std::max(1, s.supersample);
-  // The farthest ceiling point any pixel can show is bounded by the grazing rays; 60 m covers
-  // a 35 deg tilt with a 60 deg field of view at normal ceiling heights.
-  const BodyScene body = bodyScene(scene, robot_pose, 60.0);
+  // Only what the frame can show: grazing rays are cut at 60 m (at 35 deg with a 60 deg field
+  // of view the image reaches about 10 m of a normal ceiling); glow counts within 5 radii.
+  const BodyScene body = bodyScene(scene, robot_pose, footprint(view, 60.0), 5.0 * s.glow_radius_m);
   const double hc = view.heightAboveCameraM();
   const double cx = view.intrinsics().cx_px, cy = view.intrinsics().cy_px;
   const double corner2 = cx * cx + cy * cy;
+  const double pc = std::cos(robot_pose.theta), ps = std::sin(robot_pose.theta);
+
+  // The glow varies slowly: computed every kGlowStep pixels, interpolated bilinearly between.
+  constexpr int kGlowStep = 4;
+  const int gw = w / kGlowStep + 2, gh = h / kGlowStep + 2;
+  std::vector<double> glow_grid(static_cast<std::size_t>(gw) * static_cast<std::size_t>(gh), 0.0);
+  if (!body.lights.empty()) {
+    for (int j = 0; j < gh; ++j)
+      for (int i = 0; i < gw; ++i)
+        if (const auto c = view.backProject(Vec2(i * kGlowStep, j * kGlowStep))) {
+          double g = 0.0;
+          for (const auto& l : body.lights)
+            g = std::max(g, std::exp(-l.distance(*c) / s.glow_radius_m));
+          glow_grid[static_cast<std::size_t>(j * gw + i)] = g;
+        }
+  }
+  auto glowAt = [&](int u, int v) {
+    const int i = u / kGlowStep, j = v / kGlowStep;
+    const double fu = static_cast<double>(u - i * kGlowStep) / kGlowStep;
+    const double fv = static_cast<double>(v - j * kGlowStep) / kGlowStep;
+    auto at = [&](int a, int b) { return glow_grid[static_cast<std::size_t>(b * gw + a)]; };
+    return (1 - fv) * ((1 - fu) * at(i, j) + fu * at(i + 1, j)) +
+           fv * ((1 - fu) * at(i, j + 1) + fu * at(i + 1, j + 1));
+  };
 
   std::vector<Rgb> img(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   for (int v = 0; v < h; ++v) {
@@ -164,13 +259,7 @@ RgbImage renderCeiling(const CeilingView& view, const CeilingScene& scene, const
       // Illumination at the pixel centre: ambient, glow from the nearest lights, vignetting.
       const double r2 = ((u - cx) * (u - cx) + (v - cy) * (v - cy)) / corner2;
       const double vignette = 1.0 - s.vignetting * r2;
-      double illum = s.ambient;
-      if (const auto centre = view.backProject(Vec2(u, v))) {
-        double glow = 0.0;
-        for (const auto& l : body.lights)
-          glow = std::max(glow, std::exp(-l.distance(*centre) / s.glow_radius_m));
-        illum += s.glow * glow;
-      }
+      const double illum = s.ambient + s.glow * glowAt(u, v);
       const double gain = 255.0 * s.exposure * vignette;
       Rgb sum;
       for (int j = 0; j < ss; ++j) {
@@ -185,7 +274,9 @@ RgbImage renderCeiling(const CeilingView& view, const CeilingScene& scene, const
           }
           const double t = hc / d.z();
           const Vec2 p(view.mount().x_m + t * d.x(), view.mount().y_m + t * d.y());
-          const auto a = albedoAt(p, robot_pose.toWorld(p), scene, body);
+          const Vec2 p_world(robot_pose.x + pc * p.x() - ps * p.y(),
+                             robot_pose.y + ps * p.x() + pc * p.y());
+          const auto a = albedoAt(p, p_world, scene, body);
           if (!a) {
             const double e = gain * s.light_radiance;
             sum.r += e;

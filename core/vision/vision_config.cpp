@@ -62,6 +62,13 @@ VisionConfigResult visionConfigFromJson(const Json& root) {
     r.read(*t, "/top_view", "max_range_m", c.top_view.max_range_m, 0.1, 100.0);
     r.read(*t, "/top_view", "max_half_width_m", c.top_view.max_half_width_m, 0.1, 100.0);
     r.unknown(*t, "/top_view", {"px_per_m", "max_range_m", "max_half_width_m"});
+    // The top view may not exceed 16 Mpx (48 MB per frame): a typo in px_per_m must not
+    // exhaust memory.
+    const double px = c.top_view.px_per_m * c.top_view.px_per_m * c.top_view.max_range_m * 2.0 *
+                      c.top_view.max_half_width_m;
+    if (px > 16e6)
+      result.errors.push_back("/top_view: px_per_m^2 * max_range_m * 2 max_half_width_m = " +
+                              Json(std::round(px)).dump() + " px, above 16 Mpx");
   }
   if (const Json* m = r.section(root, "marker")) {
     const std::string p = "/marker";

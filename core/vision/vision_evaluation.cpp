@@ -222,7 +222,7 @@ DetectionStats evaluateDetection(const CeilingCameraConfig& camera, const Vision
         lights_body.push_back({*p, uniform(-kPi, kPi), length, width});
     }
     for (int i = 0, n = count(1, 3); i < n; ++i)
-      if (const auto p = place(camera.working_range_m + 0.5, 1.5 * size))
+      if (const auto p = place(vision.top_view.max_range_m, 1.5 * size))
         markers_body.push_back({*p, uniform(-kPi, kPi), size, size});
     std::vector<PaintedRect> decor_body;
     for (int i = 0, n = count(0, 2); i < n; ++i) {
@@ -269,6 +269,21 @@ DetectionStats evaluateDetection(const CeilingCameraConfig& camera, const Vision
     ++out.frames;
 
     // Markers: recall within the working range, precision against every real marker.
+    auto found = [&](const CeilingRect& m) {
+      double best = 1e9;
+      for (const auto& d : r.markers.markers)
+        best = std::min(best, (d.centre_body_m - m.centre).norm());
+      return best;
+    };
+    for (const auto& m : markers_body) {
+      if (!fullyVisible(m, view, r.geometry, 2.0))
+        continue;
+      const auto band = static_cast<std::size_t>(horizontalRange(m.centre, camera.mount));
+      if (band < out.band_markers.size()) {
+        ++out.band_markers[band];
+        out.band_found[band] += found(m) < 0.5 * size;
+      }
+    }
     for (const auto& m : markers_body) {
       if (horizontalRange(m.centre, camera.mount) > camera.working_range_m ||
           !fullyVisible(m, view, r.geometry, 2.0))

@@ -3,6 +3,7 @@
 // irgs-vision-eval tool (full tables, docs/landmark-navigation.md) and the tests (smaller sets,
 // asserted thresholds). Every scene, pose and noise draw comes from the seed.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -47,7 +48,11 @@ struct DetectionStats {
   int detections = 0;
   int detections_true = 0;   // within half a marker of a real marker
   ErrorStats marker_centre;  // of the found in-range markers
-  int lights_visible = 0;    // fully inside the image and the top view
+  // Recall by horizontal distance from the camera, 1 m bands 0-1 .. 5-6 m (markers are placed
+  // up to the top view's range, beyond the working range too).
+  std::array<int, 6> band_markers{};
+  std::array<int, 6> band_found{};
+  int lights_visible = 0;  // fully inside the image and the top view
   int lights_found = 0;
   ErrorStats light_centre;
   double recall() const {

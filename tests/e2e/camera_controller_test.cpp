@@ -65,6 +65,7 @@ TEST_F(CameraControllerTest, RendersNothingWhileTheDockIsHidden) {
 }
 
 TEST_F(CameraControllerTest, ShowsFramesAFewTimesASecondWithTheMarkerDetected) {
+  controller_->setMinWallPeriodMs(0);  // the test ticks faster than real time
   controller_->dock().show();
   run(2.0);
   // 4 Hz of simulated time (plus the frame shown when the dock opened).
@@ -77,6 +78,13 @@ TEST_F(CameraControllerTest, ShowsFramesAFewTimesASecondWithTheMarkerDetected) {
       << panel.statusText().toStdString();
   EXPECT_TRUE(panel.statusText().contains(QStringLiteral("1 light")))
       << panel.statusText().toStdString();
+}
+
+TEST_F(CameraControllerTest, FastSimulationDoesNotRenderMoreThanTheWallClockAllows) {
+  controller_->setMinWallPeriodMs(60'000);
+  controller_->dock().show();  // one frame on showing
+  run(2.0);
+  EXPECT_EQ(controller_->framesShown(), 1);
 }
 
 TEST_F(CameraControllerTest, AutomaticTiltFollowsTheTiltLawToTheNearestMarkerAhead) {

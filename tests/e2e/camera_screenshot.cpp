@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   session.loadWorld(*map.map, QStringLiteral("default.json"));
   window.restoreSettings(QSize(1500, 950));
   window.resize(1500, 950);
+  window.camera().setMinWallPeriodMs(0);  // the program ticks faster than real time
   window.camera().dock().show();
   window.resizeDocks({&window.camera().dock()}, {380}, Qt::Vertical);
   window.show();

@@ -97,6 +97,10 @@ TEST(VisionConfig, ReadsKeysAndReportsBadOnes) {
   ASSERT_EQ(r.errors.size(), 2u);
   EXPECT_EQ(r.errors[0], "/light/erode_px: expected an integer");
   EXPECT_EQ(r.errors[1], "/colour: unknown key");
+  const auto huge =
+      visionConfigFromJson(nlohmann::json::parse(R"({"top_view": {"px_per_m": 1000}})"));
+  ASSERT_EQ(huge.errors.size(), 1u);
+  EXPECT_NE(huge.errors[0].find("above 16 Mpx"), std::string::npos);
   const auto again = visionConfigFromJson(visionConfigToJson(r.config));
   EXPECT_TRUE(again.errors.empty());
   EXPECT_EQ(again.config.marker.cr_threshold, 150);
