@@ -18,22 +18,17 @@
 #include "app/gui/session_controller.hpp"
 #include "core/calibration/profile_calibration.hpp"
 #include "tests/e2e/app_test_support.hpp"
+#include "tests/e2e/main_window_fixture.hpp"
 #include "widgets/calibration/gyro_wizard.hpp"
 #include "widgets/calibration/umbmark_wizard.hpp"
 
 namespace irgs::gui {
 namespace {
 
-class CalibrationGuiTest : public ::testing::Test {
+class CalibrationGuiTest : public test::MainWindowFixture {
  protected:
   void SetUp() override {
-    test::ensureApp();
-    ASSERT_TRUE(dir_.isValid());
-    settings_ = std::make_unique<QSettings>(dir_.filePath(QStringLiteral("settings.ini")),
-                                            QSettings::IniFormat);
-    session_ = std::make_unique<SessionController>(test::thesisRobot(), test::simulatedFactory());
-    window_ = std::make_unique<MainWindow>(*session_, *settings_);
-    session_->loadWorld(test::squareRoom(6.0), QStringLiteral("room.json"));
+    openWindow(test::squareRoom(6.0));
     profile_file_ = dir_.filePath(QStringLiteral("robot.json"));
     calibration_ = std::make_unique<CalibrationController>(*window_, *session_, profile_file_);
     session_->setSpeedFactor(8.0);
@@ -56,10 +51,6 @@ class CalibrationGuiTest : public ::testing::Test {
       session_->tick(0.05);
   }
 
-  QTemporaryDir dir_;
-  std::unique_ptr<QSettings> settings_;
-  std::unique_ptr<SessionController> session_;
-  std::unique_ptr<MainWindow> window_;
   QString profile_file_;
   std::unique_ptr<CalibrationController> calibration_;
 };

@@ -16,6 +16,7 @@
 #include "app/gui/main_window.hpp"
 #include "app/gui/session_controller.hpp"
 #include "tests/e2e/app_test_support.hpp"
+#include "tests/e2e/main_window_fixture.hpp"
 #include "widgets/command/command_panel.hpp"
 #include "widgets/teleop/drive_pad.hpp"
 
@@ -104,16 +105,10 @@ TEST(GamepadTeleop, DrivesOnlyWhileTheDeadManIsHeldAndStopsOnReleaseOrUnplug) {
   EXPECT_FALSE(connection.last().at(0).toBool());
 }
 
-class DriveInputTest : public ::testing::Test {
+class DriveInputTest : public test::MainWindowFixture {
  protected:
   void SetUp() override {
-    test::ensureApp();
-    ASSERT_TRUE(dir_.isValid());
-    settings_ = std::make_unique<QSettings>(dir_.filePath(QStringLiteral("settings.ini")),
-                                            QSettings::IniFormat);
-    session_ = std::make_unique<SessionController>(test::thesisRobot(), test::simulatedFactory());
-    window_ = std::make_unique<MainWindow>(*session_, *settings_);
-    session_->loadWorld(test::squareRoom(), QStringLiteral("room.json"));
+    openWindow(test::squareRoom());
     device_ = std::make_shared<FakeDevice>();
     input_ = std::make_unique<DriveInputController>(window_->commandPanel(), *session_,
                                                     std::make_unique<FakeSource>(device_));
@@ -132,10 +127,6 @@ class DriveInputTest : public ::testing::Test {
   }
   Pose2 pose() const { return session_->latestSample()->odometry_pose; }
 
-  QTemporaryDir dir_;
-  std::unique_ptr<QSettings> settings_;
-  std::unique_ptr<SessionController> session_;
-  std::unique_ptr<MainWindow> window_;
   std::shared_ptr<FakeDevice> device_;
   std::unique_ptr<DriveInputController> input_;
 };

@@ -19,6 +19,7 @@
 #include "app/gui/session_controller.hpp"
 #include "app_test_support.hpp"
 #include "child_process.hpp"
+#include "tests/e2e/main_window_fixture.hpp"
 #include "widgets/command/command_panel.hpp"
 #include "widgets/console/console_widget.hpp"
 #include "widgets/link/link_health_panel.hpp"
@@ -28,16 +29,10 @@ namespace {
 
 constexpr int kConnectTimeout_ms = 60000;  // a loaded 2-core machine
 
-class LinkUiTest : public ::testing::Test {
+class LinkUiTest : public test::MainWindowFixture {
  protected:
   void SetUp() override {
-    test::ensureApp();
-    ASSERT_TRUE(dir_.isValid());
-    settings_ = std::make_unique<QSettings>(dir_.filePath(QStringLiteral("settings.ini")),
-                                            QSettings::IniFormat);
-    session_ = std::make_unique<SessionController>(test::thesisRobot(), test::simulatedFactory());
-    window_ = std::make_unique<MainWindow>(*session_, *settings_);
-    session_->loadWorld(test::squareRoom(), QStringLiteral("room.json"));
+    openWindow(test::squareRoom());
     window_->restoreSettings(QSize(1200, 800));
     window_->show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(window_.get()));
@@ -67,10 +62,6 @@ class LinkUiTest : public ::testing::Test {
   }
   LinkUi& link() const { return window_->linkUi(); }
 
-  QTemporaryDir dir_;
-  std::unique_ptr<QSettings> settings_;
-  std::unique_ptr<SessionController> session_;
-  std::unique_ptr<MainWindow> window_;
   std::unique_ptr<irgs::test::ChildProcess> robot_;
 };
 

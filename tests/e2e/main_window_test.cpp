@@ -19,6 +19,7 @@
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/session_controller.hpp"
 #include "tests/e2e/app_test_support.hpp"
+#include "tests/e2e/main_window_fixture.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/command/command_panel.hpp"
 #include "widgets/console/console_widget.hpp"
@@ -27,16 +28,10 @@
 namespace irgs::gui {
 namespace {
 
-class MainWindowTest : public ::testing::Test {
+class MainWindowTest : public test::MainWindowFixture {
  protected:
   void SetUp() override {
-    test::ensureApp();
-    ASSERT_TRUE(dir_.isValid());
-    settings_ = std::make_unique<QSettings>(dir_.filePath(QStringLiteral("settings.ini")),
-                                            QSettings::IniFormat);
-    session_ = std::make_unique<SessionController>(test::thesisRobot(), test::simulatedFactory());
-    window_ = std::make_unique<MainWindow>(*session_, *settings_);
-    session_->loadWorld(test::squareRoom(), QStringLiteral("room.json"));
+    openWindow(test::squareRoom());
     window_->restoreSettings(QSize(1200, 800));
     window_->show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(window_.get()));
@@ -58,11 +53,6 @@ class MainWindowTest : public ::testing::Test {
     }
     return nullptr;
   }
-
-  QTemporaryDir dir_;
-  std::unique_ptr<QSettings> settings_;
-  std::unique_ptr<SessionController> session_;
-  std::unique_ptr<MainWindow> window_;
 };
 
 TEST_F(MainWindowTest, UpArrowHeldDrivesTheRobotForwardAndReleaseStopsIt) {

@@ -29,22 +29,17 @@
 #include "comms/mavlink/frame_encoder.hpp"
 #include "comms/mavlink/messages.hpp"
 #include "tests/e2e/app_test_support.hpp"
+#include "tests/e2e/main_window_fixture.hpp"
 
 namespace irgs::gui {
 namespace {
 
 namespace mav = comms::mavlink;
 
-class RecordingUiTest : public ::testing::Test {
+class RecordingUiTest : public test::MainWindowFixture {
  protected:
   void SetUp() override {
-    test::ensureApp();
-    ASSERT_TRUE(dir_.isValid());
-    settings_ = std::make_unique<QSettings>(dir_.filePath(QStringLiteral("settings.ini")),
-                                            QSettings::IniFormat);
-    session_ = std::make_unique<SessionController>(test::thesisRobot(), test::simulatedFactory());
-    window_ = std::make_unique<MainWindow>(*session_, *settings_);
-    session_->loadWorld(test::squareRoom(), QStringLiteral("room.json"));
+    openWindow(test::squareRoom());
     recording_ = new RecordingUi(*session_, window_->linkUi().controller(), *window_);
   }
   void TearDown() override {
@@ -57,10 +52,6 @@ class RecordingUiTest : public ::testing::Test {
   }
   QString path(const char* name) const { return dir_.filePath(QString::fromLatin1(name)); }
 
-  QTemporaryDir dir_;
-  std::unique_ptr<QSettings> settings_;
-  std::unique_ptr<SessionController> session_;
-  std::unique_ptr<MainWindow> window_;
   RecordingUi* recording_ = nullptr;
 };
 
