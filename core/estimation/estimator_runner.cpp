@@ -158,6 +158,7 @@ void EstimatorRunner::reset(const Pose2& initial_estimate) {
     mouse_.emplace(*config_.mouse_rig, initial_);
   echo_rng_ = SimRandom::stream(config_.seed, kEchoStream);
   has_baseline_ = false;
+  last_mouse_.reset();
   next_echo_s_ = -std::numeric_limits<double>::infinity();  // fire at the first sample
   last_truth_.reset();
   step_ = {};
@@ -216,6 +217,8 @@ const EstimatorStep& EstimatorRunner::feed(const TelemetrySample& sample) {
     }
   }
   has_baseline_ = true;
+  if (sample.mouse)
+    last_mouse_ = sample.mouse;
   last_left_ = sample.left_ticks;
   last_right_ = sample.right_ticks;
   last_time_s_ = sample.time_s;
@@ -238,7 +241,13 @@ void EstimatorRunner::predictFromMice(const TelemetrySample& sample) {
     return;
   }
   ++metrics_.readings;
-  step_.mouse_motion = mouse_->update(sample.mouse->right, sample.mouse->left);
+  // The sample carries cumulative counts: this interval's report is the difference.
+  const auto since = [](const MouseCounts& now, const MouseCounts& before) {
+    return MouseCounts{now.dx - before.dx, now.dy - before.dy, now.status};
+  };
+  const MouseReading before = last_mouse_.value_or(*sample.mouse);
+  step_.mouse_motion = mouse_->update(since(sample.mouse->right, before.right),
+                                      since(sample.mouse->left, before.left));
   const TwoSensorMotion& motion = *step_.mouse_motion;
   if (motion.status == MouseMotionStatus::kOk)
     ++metrics_.accepted;

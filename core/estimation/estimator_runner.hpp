@@ -171,7 +171,8 @@ class EstimatorRunner {
 
   EkfLocalizer ekf_;  // kStereoEkf and kDeadReckoning (prediction only)
   std::optional<EncoderGyroFilter> encoder_gyro_;
-  std::optional<MouseOdometry> mouse_;  // kMouseOdometry
+  std::optional<MouseOdometry> mouse_;      // kMouseOdometry
+  std::optional<MouseReading> last_mouse_;  // the previous sample's cumulative counts
   SimRandom echo_rng_;
 
   bool has_baseline_ = false;

@@ -48,8 +48,8 @@ struct TelemetrySample {
   // The robot reports its drive blocked: commanded but not moving (ARCOS SIP stall bits).
   // For robots without bumpers (Pioneers, AmigoBots) this is the only sign of a collision.
   bool drive_stalled = false;
-  // Two optical floor sensors (paper 004): counts over the interval since the previous sample,
-  // present when the robot has them.
+  // Two optical floor sensors (paper 004), when present: counts since the start in each sensor's
+  // axes (two samples' difference = that interval's report), status of the latest reading.
   std::optional<MouseReading> mouse;
 };
 

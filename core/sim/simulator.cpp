@@ -135,6 +135,7 @@ struct Simulator::Impl {
   // The right and left floor sensors, present when the profile has a mouse rig.
   std::optional<std::pair<MouseSensorSimulator, MouseSensorSimulator>> mice;
   SimRandom mouse_rng;
+  MouseReading mouse_total;  // counts since the start, in each sensor's axes
 
   Pose2 true_pose;
   Pose2 odom_pose;
@@ -473,10 +474,17 @@ struct Simulator::Impl {
     }
     const BodyIncrement increment = incrementBetween(before, true_pose);
     const double gap = config.mouse_floor_gap_m;
-    MouseReading reading;
-    reading.right = mice->first.sample(increment, config.dt_s, gap, mouse_rng);
-    reading.left = mice->second.sample(increment, config.dt_s, gap, mouse_rng);
-    sample.mouse = reading;
+    const MouseCounts right = mice->first.sample(increment, config.dt_s, gap, mouse_rng);
+    const MouseCounts left = mice->second.sample(increment, config.dt_s, gap, mouse_rng);
+    // Cumulative, as a host accumulates the chips' reports: a consumer that sees only some
+    // samples (the GUI shows one per frame) still gets every count.
+    mouse_total.right.dx += right.dx;
+    mouse_total.right.dy += right.dy;
+    mouse_total.right.status = right.status;
+    mouse_total.left.dx += left.dx;
+    mouse_total.left.dy += left.dy;
+    mouse_total.left.status = left.status;
+    sample.mouse = mouse_total;
   }
 
   void step(TelemetrySample& sample) {

@@ -14,6 +14,7 @@
 
 #include "app/gui/session_controller.hpp"
 #include "app_test_support.hpp"
+#include "core/robot/robot_profile_file.hpp"
 #include "core/world/map_file.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/plots/error_plot_panel.hpp"
@@ -133,6 +134,36 @@ TEST_F(LocalizationControllerTest, ResettingTheRobotRestartsTheEstimatorAndOffCl
   EXPECT_TRUE(canvas_->estimatorOverlay().empty());
   controller_->stepUpdate();  // nothing to step: a console hint, no crash
   EXPECT_TRUE(lines_.last().contains(QStringLiteral("choose an estimator")));
+}
+
+// The optical-mouse estimator (paper 004) on the Type (2,0) profile: the simulated robot reads
+// its two floor sensors and the canvas shows truth, encoder DR and the mouse pose; the thesis
+// robot has no floor sensors and the controller says so instead of starting.
+TEST_F(LocalizationControllerTest, MouseOdometryRunsOnTheMouseProfileAndIsRefusedWithoutIt) {
+  controller_->setEstimator(EstimatorKind::kMouseOdometry);
+  EXPECT_EQ(controller_->runner(), nullptr);
+  EXPECT_TRUE(lines_.join('\n').contains(QStringLiteral("/drive/mouse_sensors")))
+      << lines_.join('\n').toStdString();
+
+  const RobotProfileResult mouse = loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) +
+                                                        "/resources/robots/mouse_type20_004.json");
+  ASSERT_TRUE(mouse.profile.has_value());
+  SessionController session(*mouse.profile, test::simulatedFactory());
+  session.loadWorld(corridor(), QStringLiteral("corridor.json"));
+  auto* controller = new LocalizationController(session, *canvas_, *window_);
+  controller->setEstimator(EstimatorKind::kMouseOdometry);
+  ASSERT_NE(controller->runner(), nullptr);
+  session.drive(0.3, 0.2);
+  for (double t = 0.0; t < 10.0; t += 0.05)
+    session.tick(0.05);
+  const EstimatorRunner& runner = *controller->runner();
+  EXPECT_GT(runner.metrics().readings, 100);
+  EXPECT_GT(runner.metrics().distance_m, 1.0);
+  EXPECT_LT(runner.metrics().max_position_error_m, 0.05);
+  const widgets::EstimatorOverlay& overlay = canvas_->estimatorOverlay();
+  ASSERT_EQ(overlay.poses.size(), 3u);
+  EXPECT_EQ(overlay.poses.back().label, QStringLiteral("mouse"));
+  delete controller;
 }
 
 }  // namespace

@@ -244,9 +244,10 @@ namespace {
 RobotProfile mouseRigRobot() {
   RobotProfile robot = test::squareRobot();
   robot.body_outline.clear();
-  robot.drive.extra["mouse_sensors"] = {{"counts_per_inch", 800.0},
-                                        {"right", {{"x_m", 0.0}, {"y_m", -0.1}, {"heading_deg", 0.0}}},
-                                        {"left", {{"x_m", 0.0}, {"y_m", 0.1}, {"heading_deg", 0.0}}}};
+  robot.drive.extra["mouse_sensors"] = {
+      {"counts_per_inch", 800.0},
+      {"right", {{"x_m", 0.0}, {"y_m", -0.1}, {"heading_deg", 0.0}}},
+      {"left", {{"x_m", 0.0}, {"y_m", 0.1}, {"heading_deg", 0.0}}}};
   return robot;
 }
 
@@ -266,13 +267,15 @@ TEST(SimulatorMouse, CountsFollowTheTrueMotion) {
   const double metres_per_count = 0.0254 / 800.0;
   // Forward: both sensors count the same forward travel, nothing sideways.
   sim.setCommand({0.2, 0.0});
+  // The counts are cumulative since the start.
   std::int64_t right_dx = 0, left_dx = 0, dy = 0;
   const double x0 = sim.truePose().x;
   for (int i = 0; i < 300; ++i) {
     const MouseReading m = *sim.step().mouse;
-    right_dx += m.right.dx;
-    left_dx += m.left.dx;
-    dy += m.right.dy + m.left.dy;
+    EXPECT_GE(m.right.dx, right_dx);  // never counts backwards while driving forwards
+    right_dx = m.right.dx;
+    left_dx = m.left.dx;
+    dy = m.right.dy + m.left.dy;
     EXPECT_EQ(m.right.status, MouseStatus::kTracking);
   }
   const double travelled = sim.truePose().x - x0;
@@ -282,11 +285,11 @@ TEST(SimulatorMouse, CountsFollowTheTrueMotion) {
   // Spinning in place (counter-clockwise): the right sensor moves forward, the left backward.
   sim.halt();
   sim.setCommand({0.0, 1.0});
-  right_dx = left_dx = 0;
+  const std::int64_t right_before = right_dx, left_before = left_dx;
   for (int i = 0; i < 100; ++i) {
     const MouseReading m = *sim.step().mouse;
-    right_dx += m.right.dx;
-    left_dx += m.left.dx;
+    right_dx = m.right.dx - right_before;
+    left_dx = m.left.dx - left_before;
   }
   EXPECT_GT(right_dx, 100);
   EXPECT_NEAR(static_cast<double>(left_dx), -static_cast<double>(right_dx), 2.0);
