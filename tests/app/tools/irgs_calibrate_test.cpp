@@ -77,7 +77,7 @@ TEST(IrgsCalibrate, UmbmarkFromMeasuredReturnErrorsAndBadInput) {
   }
   const auto out = scratch("p3dx_measured.json");
   const ToolRun r = calibrate("umbmark --profile " + kP3dx + " --measured " + measured.string() +
-                          " --out " + out.string());
+                              " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(loadRobotProfileFile(out).ok());
 
