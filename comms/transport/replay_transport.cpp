@@ -95,10 +95,12 @@ class ReplayCore : public std::enable_shared_from_this<ReplayCore> {
       feed_->dropped_bytes_.fetch_add(bytes.size());
       return;
     }
+    // Counted before the hand-over: whoever sees the bytes' effects (a decoded frame on another
+    // thread) must also see them counted.
     rx_bytes_.fetch_add(bytes.size());
+    feed_->delivered_bytes_.fetch_add(bytes.size());
     if (callbacks_.on_bytes)
       callbacks_.on_bytes(bytes);
-    feed_->delivered_bytes_.fetch_add(bytes.size());
   }
 
   IoThread& io_;
