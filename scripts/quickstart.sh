@@ -25,7 +25,7 @@ packages=(build-essential cmake ninja-build pkg-config
   qt6-base-dev qt6-charts-dev qt6-svg-dev libqt6sql6-sqlite libgl-dev libqt6opengl6-dev
   libeigen3-dev libboost-dev libboost-system-dev libboost-graph-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libyaml-cpp-dev libopencv-dev
-  libsdl2-dev xvfb xauth socat)
+  libsdl2-dev xvfb xauth socat mold)
 # Benchmark-only: MRPT for bench/mapping's sonar insertion comparison (irgs_bench_mrpt_grid).
 # Opt in with IRGS_BENCH_MRPT=1; the normal build and the tests never need it.
 if [ "${IRGS_BENCH_MRPT:-}" = 1 ]; then packages+=(libmrpt-dev); fi
