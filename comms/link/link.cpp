@@ -92,6 +92,14 @@ struct Link::Impl : std::enable_shared_from_this<Link::Impl> {
     session.onReceived(bytes.size(), counters, t);
     for (const auto& frame : frames) {
       session.onFrame(frame, t);
+      // An event a frame caused (link up on the first heartbeat) reaches the owner before the
+      // frames after it: what the owner does on it (a robot resets its sample assembly) then
+      // happens at one place in the byte stream, however the bytes were split into reads.
+      if (session.hasPendingEvents()) {
+        flush(t);
+        if (stopped)
+          return;
+      }
       if (callbacks.on_frame)
         guarded([&] { callbacks.on_frame(frame); });
       if (stopped)

@@ -91,6 +91,9 @@ class LinkSession {
 
   LinkState state() const { return state_; }
   bool transportOpen() const { return transport_open_; }
+  // Whether takeOutput() would return console/state events (the owner delivers them at once, in
+  // the byte stream's order: a link-up between two frames is seen between them).
+  bool hasPendingEvents() const { return !output_.events.empty(); }
   LinkStats stats(double now_s) const;
   const LinkSessionConfig& config() const { return config_; }
   std::optional<mavlink::Heartbeat> peerHeartbeat() const { return peer_heartbeat_; }

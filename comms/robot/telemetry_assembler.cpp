@@ -42,7 +42,11 @@ TelemetryAssembler::TelemetryAssembler(RobotProfile profile, TelemetryAssemblerC
 }
 
 bool TelemetryAssembler::advanceTo(std::int64_t time_ms, bool is_pose) {
-  if (newest_ms_ && time_ms < *newest_ms_ - kRestartJump_ms) {
+  const bool restarted_after_reset =
+      clock_in_doubt_ && is_pose && released_ms_ && time_ms < *released_ms_;
+  if (is_pose)
+    clock_in_doubt_ = false;
+  if (restarted_after_reset || (newest_ms_ && time_ms < *newest_ms_ - kRestartJump_ms)) {
     ++counters_.restarts;  // the robot's boot clock started over
     current_ = {};
     newest_ms_.reset();
@@ -393,8 +397,7 @@ void TelemetryAssembler::reset() {
   flushLate();
   released_by_hold_ = false;
   current_ = {};
-  newest_ms_.reset();
-  released_ms_.reset();
+  clock_in_doubt_ = true;
 }
 
 std::vector<TelemetrySample> TelemetryAssembler::takeReady() {

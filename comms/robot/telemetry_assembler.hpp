@@ -77,8 +77,13 @@ class TelemetryAssembler {
   void onFrame(const mavlink::Frame& frame, double now_s);
   // Releases a complete sample that waited hold_s (call every few tens of milliseconds).
   void tick(double now_s);
-  // Forgets the time base and the sample being assembled (link re-established: the robot may
-  // have restarted). The state carried from sample to sample (ticks, bumpers) is kept.
+  // Link re-established: releases the sample being assembled (when complete) and lets the
+  // first pose after it decide whether the robot restarted. A pose older than the last released
+  // step starts a new time base; otherwise the robot's clock goes on, and a pose of a step
+  // already released stays stale as if the link had never dropped, so the samples depend on the
+  // byte stream alone, not on where in it the reconnection was noticed (a replay of the same
+  // bytes gives the same samples). The state carried from sample to sample (ticks, bumpers) is
+  // kept.
   void reset();
 
   // Released samples, oldest first.
@@ -122,11 +127,12 @@ class TelemetryAssembler {
   RobotProfile profile_;
   TelemetryAssemblerConfig config_;
   Assembly current_;
-  std::optional<std::int64_t> newest_ms_;    // newest time stamp seen since the last reset
+  std::optional<std::int64_t> newest_ms_;    // newest time stamp of the current time base
   std::optional<std::int64_t> released_ms_;  // time of the last released sample
   std::optional<Pose2> last_pose_;           // pose of the last released sample
   VelocityCommand last_velocity_{};          // velocity of the last released sample
   bool released_by_hold_ = false;            // the last release was the hold timer's
+  bool clock_in_doubt_ = false;              // reset(): the next pose tells if it restarted
   std::optional<TelemetrySample> late_;      // supplementary sample for late readings
   TelemetrySample carried_;                  // ticks, bumpers, proximity of the newest data
   std::optional<GyroReading> gyro_;          // the newest SCALED_IMU yaw rate

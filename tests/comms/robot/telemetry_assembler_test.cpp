@@ -463,6 +463,48 @@ TEST(TelemetryAssembler, ARobotRestartStartsTheTimeBaseOver) {
   EXPECT_EQ(assembler.counters().restarts, 1u);
 }
 
+// Where in the byte stream the link noticed a reconnection must not change the samples: a replay
+// of the same bytes (which may notice it elsewhere, or not at all) has to give the same poses.
+TEST(TelemetryAssembler, AResetBetweenTwoPosesOfOneStepKeepsTheFirstLikeNoReset) {
+  TelemetryAssembler with_reset(testing::thesisRobot());
+  TelemetryAssembler without(testing::thesisRobot());
+  for (TelemetryAssembler* a : {&with_reset, &without}) {
+    a->onFrame(lpn(1000, 1.0f, 0.0f), 0.0);
+    a->onFrame(att(1000, 0.0f), 0.0);
+    if (a == &with_reset)
+      a->reset();
+    // The same step's pose again, differently rounded (as ODOMETRY repeats LPN + ATTITUDE).
+    a->onFrame(lpn(1000, 1.0000001f, 0.0f), 0.0);
+    a->onFrame(att(1000, 0.0f), 0.0);
+    a->onFrame(lpn(1050, 1.1f, 0.0f), 0.0);
+    a->onFrame(att(1050, 0.0f), 0.0);
+    a->reset();  // the end: releases the complete 1050 step
+  }
+  const auto a = with_reset.takeReady();
+  const auto b = without.takeReady();
+  ASSERT_EQ(a.size(), 2u);
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].time_s, b[i].time_s);
+    EXPECT_EQ(a[i].odometry_pose.x, b[i].odometry_pose.x) << "sample " << i;
+  }
+  EXPECT_DOUBLE_EQ(a[0].odometry_pose.x, 1.0);
+  EXPECT_EQ(with_reset.counters().restarts, 0u);
+}
+
+TEST(TelemetryAssembler, APoseOlderThanTheLastStepAfterAResetStartsANewTimeBase) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
+  assembler.onFrame(lpn(800, 1.0f, 0.0f), 0.0);  // less than kRestartJump_ms of robot time
+  assembler.onFrame(att(800, 0.0f), 0.0);
+  assembler.reset();                            // link back up: was it a reboot?
+  assembler.onFrame(lpn(40, 0.0f, 0.0f), 0.0);  // yes: its clock is behind the last step
+  assembler.onFrame(att(40, 0.0f), 0.0);
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 2u);
+  EXPECT_DOUBLE_EQ(samples[1].time_s, 0.04);
+  EXPECT_EQ(assembler.counters().restarts, 1u);
+}
+
 TEST(TelemetryAssembler, RejectsANonPositiveHoldTime) {
   EXPECT_THROW(TelemetryAssembler(testing::thesisRobot(), {.hold_s = 0.0}), std::invalid_argument);
   EXPECT_THROW(TelemetryAssembler(testing::thesisRobot(),
