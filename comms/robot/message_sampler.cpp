@@ -22,19 +22,20 @@ void MessageSampler::onFrame(const mavlink::Frame& frame, double now_s) {
     return;
   }
   // The clock first, so untimed messages thinned away still see the newest time stamp.
-  std::optional<double> time_s = mavlink::timeStamp_s(*message, frame);
-  if (time_s) {
-    if (newest_time_s_ && *time_s < *newest_time_s_ - kRestartJump_s) {
+  const std::optional<double> stamp_s = mavlink::timeStamp_s(*message, frame);
+  if (stamp_s) {
+    if (newest_time_s_ && *stamp_s < *newest_time_s_ - kRestartJump_s) {
       ++counters_.restarts;
-      newest_time_s_ = *time_s;
+      newest_time_s_ = *stamp_s;
     } else {
-      newest_time_s_ = std::max(newest_time_s_.value_or(*time_s), *time_s);
+      newest_time_s_ = std::max(newest_time_s_.value_or(*stamp_s), *stamp_s);
     }
-  } else if (newest_time_s_) {
-    time_s = newest_time_s_;
-  } else {
-    ++counters_.untimed;
-    return;
+    // What arrived before the first time stamp sits at it.
+    for (MessageSample& waiting : untimed_) {
+      waiting.robot_time_s = *newest_time_s_;
+      push(std::move(waiting));
+    }
+    untimed_.clear();
   }
 
   std::optional<std::uint32_t> instance;
@@ -50,10 +51,26 @@ void MessageSampler::onFrame(const mavlink::Frame& frame, double now_s) {
   MessageSample sample;
   sample.message = message;
   sample.instance = instance;
-  sample.robot_time_s = *time_s;
   sample.values.reserve(message->fields.size());
   for (const mavlink::FieldInfo& field : message->fields)
     sample.values.push_back(mavlink::readField(field, frame));
+  if (stamp_s) {
+    sample.robot_time_s = *stamp_s;
+  } else if (newest_time_s_) {
+    sample.robot_time_s = *newest_time_s_;
+  } else {
+    ++counters_.untimed;
+    untimed_.push_back(std::move(sample));
+    if (untimed_.size() > kMaxUntimed) {
+      untimed_.pop_front();
+      ++counters_.dropped;
+    }
+    return;
+  }
+  push(std::move(sample));
+}
+
+void MessageSampler::push(MessageSample sample) {
   pending_.push_back(std::move(sample));
   ++counters_.kept;
   while (pending_.size() > std::max<std::size_t>(1, config_.max_pending)) {

@@ -13,7 +13,8 @@
 //
 // Time: a message's own time stamp (time_boot_ms or time_usec, the robot's boot clock) when it
 // has one, else the newest time stamp seen (HEARTBEAT, SYS_STATUS, ... have none: they sit at
-// the robot time they arrived at). Untimed frames before the first time stamp are left out. A
+// the robot time they arrived at). Untimed frames before the first time stamp wait for it and
+// take it (the newest kMaxUntimed of them). A
 // time stamp more than kRestartJump_s older than the newest starts the clock over (the robot
 // rebooted); reset() forgets it (link re-established).
 
@@ -46,13 +47,14 @@ struct MessageSamplerCounters {
   std::uint64_t thinned = 0;   // over the stream's rate
   std::uint64_t dropped = 0;   // queued but pushed out before take()
   std::uint64_t unknown = 0;   // no field table for the message id
-  std::uint64_t untimed = 0;   // no time stamp seen yet
+  std::uint64_t untimed = 0;   // arrived before any time stamp (held for the first one)
   std::uint64_t restarts = 0;  // robot clock jumped back
 };
 
 class MessageSampler {
  public:
   static constexpr double kRestartJump_s = 1.0;
+  static constexpr std::size_t kMaxUntimed = 64;
 
   // Throws std::invalid_argument for a negative or non-finite rate, or a burst < 1 when on.
   explicit MessageSampler(MessageSamplerConfig config = {});
@@ -74,11 +76,13 @@ class MessageSampler {
     double last_s = 0.0;
   };
   bool admit(std::uint64_t stream, double now_s);
+  void push(MessageSample sample);
 
   MessageSamplerConfig config_;
   std::optional<double> newest_time_s_;
   std::unordered_map<std::uint64_t, Bucket> buckets_;
   std::deque<MessageSample> pending_;
+  std::deque<MessageSample> untimed_;  // waiting for the first time stamp
   MessageSamplerCounters counters_;
 };
 

@@ -110,16 +110,20 @@ TEST(MessageSampler, EachInstanceIsAStreamOfItsOwn) {
 
 TEST(MessageSampler, UntimedMessagesTakeTheNewestTimeStampAndWaitForTheFirst) {
   MessageSampler sampler(on());
-  sampler.onFrame(frameOf(mav::Heartbeat{}), 0.0);  // no robot time yet: left out
+  sampler.onFrame(frameOf(mav::Heartbeat{}), 0.0);  // no robot time yet: waits for one
   EXPECT_EQ(sampler.counters().untimed, 1u);
+  EXPECT_TRUE(sampler.take().empty());
   sampler.onFrame(frameOf(pose(4200, 1.0f)), 0.1);
   mav::SysStatus status;
   status.voltage_battery = 12600;
   sampler.onFrame(frameOf(status), 0.2);
   const auto samples = sampler.take();
-  ASSERT_EQ(samples.size(), 2u);
-  EXPECT_EQ(samples[1].message->name, "SYS_STATUS");
-  EXPECT_DOUBLE_EQ(samples[1].robot_time_s, 4.2);
+  ASSERT_EQ(samples.size(), 3u);
+  EXPECT_EQ(samples[0].message->name, "HEARTBEAT");
+  EXPECT_DOUBLE_EQ(samples[0].robot_time_s, 4.2);
+  EXPECT_EQ(samples[1].message->name, "IRGS_POSE_2D");
+  EXPECT_EQ(samples[2].message->name, "SYS_STATUS");
+  EXPECT_DOUBLE_EQ(samples[2].robot_time_s, 4.2);
   // A robot reboot: its clock starts over and the untimed messages follow it.
   sampler.onFrame(frameOf(pose(300, 1.0f)), 1.0);
   sampler.onFrame(frameOf(status), 1.1);
@@ -131,6 +135,10 @@ TEST(MessageSampler, UntimedMessagesTakeTheNewestTimeStampAndWaitForTheFirst) {
   sampler.reset();
   sampler.onFrame(frameOf(status), 2.0);
   EXPECT_TRUE(sampler.take().empty());
+  sampler.onFrame(frameOf(pose(50, 1.0f)), 2.1);
+  const auto reset = sampler.take();
+  ASSERT_EQ(reset.size(), 2u);
+  EXPECT_DOUBLE_EQ(reset[0].robot_time_s, 0.05);
 }
 
 TEST(MessageSampler, TheQueueKeepsTheNewestSamples) {
