@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   });
   MainWindow window(session, settings);
   session.loadWorld(*map.map, QStringLiteral("default.json"));
-  window.resize(1400, 950);
+  window.resize(1400, 1000);
   window.show();
   PlotsController& plots = window.plots();
   plots.dock().show();
@@ -110,16 +110,22 @@ int main(int argc, char** argv) {
   dock.plotFields(second);
   dock.setCurrentPanel(&dock.panel(2));
   dock.plotFields(third);
+  // The browser on the MAVLink branch: the session's own sources folded, one message open and
+  // DISTANCE_SENSOR's instance level showing.
   widgets::FieldBrowser& browser = dock.browser();
-  for (const QString& key : first + second + third) {
-    for (QTreeWidgetItem* item = browser.itemFor(key); item != nullptr; item = item->parent())
+  for (int i = 0; i < browser.topLevelItemCount(); ++i)
+    browser.topLevelItem(i)->setExpanded(browser.topLevelItem(i)->text(0) == "MAVLink");
+  for (const QString& key : {first[0], third[0]}) {
+    QTreeWidgetItem* item = browser.itemFor(key);
+    if (item != nullptr && key == third[0])
+      item = item->parent();  // "id 0": show the instances, not its fields
+    for (item = item != nullptr ? item->parent() : nullptr; item != nullptr; item = item->parent())
       item->setExpanded(true);
   }
-  if (QTreeWidgetItem* x = browser.itemFor(first[0])) {
+  if (QTreeWidgetItem* x = browser.itemFor(first[0]))
     browser.setCurrentItem(x);
-    browser.scrollToItem(x, QAbstractItemView::PositionAtTop);
-  }
-  window.resizeDocks({&plots.dock()}, {500}, Qt::Vertical);
+  browser.scrollToTop();
+  window.resizeDocks({&plots.dock()}, {460}, Qt::Vertical);
   window.canvas().zoomToFit();
   dock.refreshNow();
   pump(app, 300);

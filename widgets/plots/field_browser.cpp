@@ -94,6 +94,8 @@ void FieldBrowser::addKey(const QString& key) {
         parent->insertChild(insert_at, found);
       else
         insertTopLevelItem(insert_at, found);
+      // The whole path on hover: deep names (MAVLink messages) may not fit the column.
+      found->setToolTip(0, parts.mid(0, i + 1).join(QLatin1Char('/')));
       if (leaf) {
         found->setData(0, kKeyRole, key);
         found->setText(1, hub_.unit(key));
