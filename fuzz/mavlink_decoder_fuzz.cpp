@@ -1,7 +1,8 @@
 // libFuzzer harness for the MAVLink FrameDecoder. The first input byte chooses the chunking and
 // the signing configuration; the rest is the byte stream. Invariants checked on every input:
 // no crash or sanitizer report, every byte accounted for (garbage, delivered frame or buffered),
-// and delivered frames carry a payload no longer than their message allows.
+// and delivered frames carry a payload no longer than their message allows; every entry of a
+// delivered frame's field table (what the plots read) lies inside its payload and reads.
 //
 //   build/fuzz/irgs_fuzz_mavlink_decoder -max_total_time=60 fuzz/corpus/mavlink_decoder
 
@@ -11,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "comms/mavlink/field_info.hpp"
 #include "comms/mavlink/frame_decoder.hpp"
 
 namespace {
@@ -56,6 +58,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort();
     }
     in_frames += frameSize(f);
+    namespace m = irgs::comms::mavlink;
+    const m::MessageFields* table = m::findMessageFields(f.message_id);
+    if (table == nullptr) {
+      std::abort();  // every known message has a table
+    }
+    volatile double sink = 0.0;
+    for (const m::FieldInfo& field : table->fields) {
+      if (field.offset + m::sizeOf(field.type) > info->max_length) {
+        std::abort();
+      }
+      sink = sink + m::readField(field, f);
+    }
   }
   if (decoder.totals().garbage_bytes + in_frames + decoder.bufferedBytes() > stream.size()) {
     std::abort();

@@ -9,6 +9,10 @@ definition or the message list below:
     python3 scripts/mavlink_gen.py            # writes comms/mavlink/messages.hpp
     python3 scripts/mavlink_gen.py --check    # exit 1 if the committed header is stale
 
+Each message also gets kFields, a table of its numeric values (name, XML unit, type, wire
+offset, array element; comms/mavlink/field_info.hpp reads a decoded frame through it) and
+setField(index, value) to fill the struct by table index.
+
 Wire rules (https://mavlink.io/en/guide/serialization.html):
   * base fields are sent sorted by the size of their element type, largest first (stable sort,
     so fields of the same size keep their XML order); extension fields follow, in XML order;
@@ -62,6 +66,13 @@ MAV_CMD_USED = [
     "MAV_CMD_IRGS_STOP", "MAV_CMD_IRGS_EMERGENCY_STOP",
 ]
 
+# MAVLink type -> FieldType enumerator (comms/mavlink/field_info.hpp); char is text, not numeric.
+FIELD_TYPES = {
+    "uint8_t": "kUint8", "int8_t": "kInt8", "uint16_t": "kUint16", "int16_t": "kInt16",
+    "uint32_t": "kUint32", "int32_t": "kInt32", "uint64_t": "kUint64", "int64_t": "kInt64",
+    "float": "kFloat", "double": "kDouble",
+}
+
 TYPES = {  # MAVLink type -> (C++ type, size in bytes)
     "char": ("char", 1), "uint8_t": ("std::uint8_t", 1), "int8_t": ("std::int8_t", 1),
     "uint16_t": ("std::uint16_t", 2), "int16_t": ("std::int16_t", 2),
@@ -94,6 +105,7 @@ class Field:
         self.wire_type = "uint8_t" if self.magic else text
         self.cpp, self.size = TYPES[text]
         self.units = el.get("units", "")
+        self.instance = el.get("instance", "") == "true"
         self.enum = el.get("enum", "")
         self.doc = " ".join((el.text or "").split())
 
@@ -234,9 +246,43 @@ def emit_message(m, out):
             out.append(f"    wire::get(payload, {f.offset}, m.{f.name});")
     out.append("    return m;")
     out.append("  }")
+    emit_field_table(m, out)
     out.append(f"  friend bool operator==(const {cls}&, const {cls}&) = default;")
     out.append("};")
     out.append("")
+
+
+def numeric_elements(m):
+    """(field, element index or -1) of every numeric value, in declaration order."""
+    for f in m.fields:
+        if f.wire_type == "char":
+            continue
+        for i in range(f.array) if f.array else [-1]:
+            yield f, i
+
+
+def emit_field_table(m, out):
+    elements = list(numeric_elements(m))
+    out.append("  // Every numeric value (arrays element by element; char text left out), in declaration")
+    out.append("  // order, with its byte offset in the wire-order payload: readField() reads a decoded")
+    out.append("  // frame's payload through it, setField() fills this struct by table index.")
+    out.append(f"  static constexpr std::array<FieldInfo, {len(elements)}> kFields{{{{")
+    for f, i in elements:
+        offset = f.offset + f.size * max(0, i)
+        instance = "true" if f.instance else "false"
+        extension = "true" if f.extension else "false"
+        out.append(f"      {{\"{f.name}\", \"{f.units}\", FieldType::{FIELD_TYPES[f.wire_type]}, {offset}, {i}, "
+                   f"{instance}, {extension}}},")
+    out.append("  }};")
+    out.append("  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.")
+    out.append("  constexpr bool setField(std::size_t index, double value) {")
+    out.append("    switch (index) {")
+    for n, (f, i) in enumerate(elements):
+        target = f"{f.name}[{i}]" if i >= 0 else f.name
+        out.append(f"      case {n}: {target} = static_cast<{f.cpp}>(value); return true;")
+    out.append("      default: return false;")
+    out.append("    }")
+    out.append("  }")
 
 
 def generate():
@@ -250,11 +296,13 @@ def generate():
         "// values survive a round trip; the enums below name the values the project uses.",
         "",
         "#include <array>",
+        "#include <cstddef>",
         "#include <cstdint>",
         "#include <span>",
         "#include <string_view>",
         "#include <tuple>",
         "",
+        "#include \"comms/mavlink/field_info.hpp\"",
         "#include \"comms/mavlink/message_info.hpp\"",
         "#include \"comms/mavlink/wire.hpp\"",
         "",
@@ -271,6 +319,12 @@ def generate():
     for m in sorted(chosen, key=lambda m: m.id):
         cls = camel(m.name)
         out.append(f"    messageInfoOf<{cls}>(),")
+    out.append("}};")
+    out.append("")
+    out.append("// Every generated message's field table, sorted by id (findMessageFields searches it).")
+    out.append(f"inline constexpr std::array<MessageFields, {len(chosen)}> kGeneratedMessageFields{{{{")
+    for m in sorted(chosen, key=lambda m: m.id):
+        out.append(f"    messageFieldsOf<{camel(m.name)}>(),")
     out.append("}};")
     out.append("")
     out.append("// Every generated message type, for code that handles all of them (tests, dispatch).")

@@ -61,6 +61,7 @@ QString LinkController::connectTo(const QString& url) {
     }
     comms::LinkedRobotConfig config;
     config.link.tap = tap;
+    config.messages = guiMessageSampling();
     comms::LinkedRobot::OpenResult opened =
         comms::LinkedRobot::open(*io, link_url, profile, std::move(config));
     if (!opened.robot)

@@ -1,6 +1,7 @@
 #include "app/gui/linked_robot_handle.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace irgs::gui {
@@ -18,6 +19,12 @@ double spanRate(const std::deque<double>& times) {
 }
 
 }  // namespace
+
+comms::MessageSamplerConfig guiMessageSampling() {
+  comms::MessageSamplerConfig config;
+  config.max_rate_hz = 25.0;
+  return config;
+}
 
 LinkedRobotHandle::LinkedRobotHandle(std::shared_ptr<comms::IoThread> io,
                                      std::unique_ptr<comms::LinkedRobot> robot, std::string url)
@@ -67,6 +74,34 @@ std::vector<TelemetrySample> LinkedRobotHandle::rebase(std::vector<TelemetrySamp
       sonar_counts_.pop_front();
   }
   return samples;
+}
+
+std::vector<comms::MessageSample> LinkedRobotHandle::takeMessages() {
+  std::vector<comms::MessageSample> messages = robot_->takeMessages();
+  if (!have_time_) {
+    // No sample yet, so no offset: they wait (the first sample comes within the assembler's
+    // hold time; a robot that sends no odometry keeps only the newest kMaxEarlyMessages).
+    early_messages_.insert(early_messages_.end(), std::make_move_iterator(messages.begin()),
+                           std::make_move_iterator(messages.end()));
+    if (early_messages_.size() > kMaxEarlyMessages)
+      early_messages_.erase(early_messages_.begin(),
+                            early_messages_.end() - static_cast<std::ptrdiff_t>(kMaxEarlyMessages));
+    return {};
+  }
+  if (!early_messages_.empty()) {
+    messages.insert(messages.begin(), std::make_move_iterator(early_messages_.begin()),
+                    std::make_move_iterator(early_messages_.end()));
+    early_messages_.clear();
+  }
+  // Samples advance last_time_s_ by the robot clock's steps: this is the offset of the clocks.
+  const double offset_s = last_time_s_ - last_robot_time_s_;
+  std::erase_if(messages, [&](comms::MessageSample& m) {
+    if (m.robot_time_s < last_robot_time_s_ - kRestartJump_s)
+      return true;  // the robot rebooted and no sample told us the new offset yet
+    m.robot_time_s = std::max(0.0, m.robot_time_s + offset_s);
+    return false;
+  });
+  return messages;
 }
 
 TelemetryRates LinkedRobotHandle::rates() const {

@@ -25,6 +25,11 @@ struct TelemetryRates {
   std::uint64_t sonar_readings = 0;
 };
 
+// The decoded-message sampling the GUI's linked robots ask for (LinkedRobotConfig::messages):
+// every stream (message, or message instance) at up to 25 Hz — the full profile's 20 Hz
+// streams whole, a replay at x16 thinned — for the plots' MAVLink fields.
+comms::MessageSamplerConfig guiMessageSampling();
+
 class LinkedRobotHandle final : public Robot {
  public:
   static constexpr double kRateWindow_s = 3.0;  // robot-clock window of the rates
@@ -44,6 +49,12 @@ class LinkedRobotHandle final : public Robot {
   comms::LinkedRobot& linked() { return *robot_; }
   const std::string& url() const { return url_; }
   TelemetryRates rates() const;
+  // The robot's decoded messages (comms::LinkedRobot::takeMessages) with robot_time_s put on
+  // the clock of the samples update() returns (rebased, reboots included), so a message and
+  // the sample of its time stamp line up; messages stamped after a reboot the samples have not
+  // shown yet are left out. Messages before the first sample wait for it (it sets the offset).
+  std::vector<comms::MessageSample> takeMessages();
+  static constexpr std::size_t kMaxEarlyMessages = 2048;
 
  private:
   // Puts the robot's samples on our monotonic clock (robot reboots included) and counts rates.
@@ -59,6 +70,7 @@ class LinkedRobotHandle final : public Robot {
   std::deque<std::pair<double, std::size_t>> sonar_counts_;
   std::uint64_t samples_ = 0;
   std::uint64_t sonar_readings_ = 0;
+  std::vector<comms::MessageSample> early_messages_;  // taken before the first sample
 };
 
 }  // namespace irgs::gui

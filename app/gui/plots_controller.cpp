@@ -7,8 +7,11 @@
 #include <QMenuBar>
 
 #include "app/gui/link_controller.hpp"
+#include "app/gui/linked_robot_handle.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/session_controller.hpp"
+#include "comms/mavlink/field_info.hpp"
+#include "comms/robot/message_sampler.hpp"
 #include "widgets/link/link_health_panel.hpp"
 #include "widgets/plots/plot_data_hub.hpp"
 #include "widgets/plots/plots_dock.hpp"
@@ -18,7 +21,7 @@ namespace irgs::gui {
 
 PlotsController::PlotsController(SessionController& session, LocalizationController& localization,
                                  LinkController& link, QMainWindow& window)
-    : QObject(&window), session_(session), localization_(localization) {
+    : QObject(&window), session_(session), localization_(localization), link_(link) {
   hub_ = new widgets::PlotDataHub(widgets::PlotSeries::kDefaultCapacity, this);
   dock_ = new QDockWidget(tr("Plots"), &window);
   dock_->setObjectName(QStringLiteral("plotsDock"));
@@ -38,6 +41,50 @@ PlotsController::PlotsController(SessionController& session, LocalizationControl
 
   connect(&session_, &SessionController::robotStateChanged, this, &PlotsController::onSample);
   connect(&link, &LinkController::healthChanged, this, &PlotsController::onHealth);
+  connect(&session_, &SessionController::ticked, this, &PlotsController::takeMessages);
+}
+
+QString PlotsController::mavlinkKey(const comms::MessageSample& message, std::size_t index) {
+  const comms::mavlink::FieldInfo& field = message.message->fields[index];
+  QString key =
+      QStringLiteral("MAVLink/") + QLatin1String(message.message->name) + QLatin1Char('/');
+  if (message.instance) {
+    const auto instance = comms::mavlink::instanceField(*message.message);
+    key += QLatin1String(message.message->fields[*instance].name) + QLatin1Char(' ') +
+           QString::number(*message.instance) + QLatin1Char('/');
+  }
+  key += QLatin1String(field.name);
+  if (field.array_index >= 0)
+    key += QStringLiteral("[%1]").arg(field.array_index);
+  return key;
+}
+
+void PlotsController::takeMessages() {
+  LinkedRobotHandle* handle = link_.handle();
+  if (handle == nullptr)
+    return;
+  // Message times are on the robot's sample clock; the session adds the same offset to samples.
+  const double offset_s = session_.robotTimeOffset_s();
+  for (const comms::MessageSample& message : handle->takeMessages()) {
+    const std::uint64_t stream = (static_cast<std::uint64_t>(message.message->id) << 32) |
+                                 message.instance.value_or(0xFFFFFFFFu);
+    auto it = stream_keys_.find(stream);
+    if (it == stream_keys_.end()) {
+      StreamKeys keys;
+      for (std::size_t i = 0; i < message.message->fields.size(); ++i) {
+        keys.keys << mavlinkKey(message, i);
+        keys.units << QString::fromUtf8(
+            message.message->fields[i].unit.data(),
+            static_cast<qsizetype>(message.message->fields[i].unit.size()));
+      }
+      it = stream_keys_.emplace(stream, std::move(keys)).first;
+    }
+    const double t = message.robot_time_s + offset_s;
+    for (std::size_t i = 0; i < message.values.size(); ++i) {
+      const auto k = static_cast<qsizetype>(i);
+      hub_->record(it->second.keys[k], it->second.units[k], t, message.values[i], kMavlinkCapacity);
+    }
+  }
 }
 
 PlotsController::~PlotsController() = default;

@@ -303,6 +303,7 @@ QString RecordingUi::openReplay(const QString& path, double speed) {
     comms::LinkedRobotConfig config;
     config.link.make_transport = comms::replayTransportMaker(feed, "replay " + name);
     config.link.session.timeout_s = kReplayHeartbeatTimeout_s;
+    config.messages = guiMessageSampling();
     comms::LinkedRobot::OpenResult opened = comms::LinkedRobot::open(*io, url, profile, config);
     if (!opened.robot)
       throw std::runtime_error(opened.error);

@@ -91,6 +91,9 @@ class SessionController : public QObject {
   const std::optional<TelemetrySample>& latestSample() const { return latest_; }
   // Time of the newest sample shown (integrated), s; monotonic across robot resets.
   double displayTime_s() const { return display_time_s_; }
+  // Session time of the current robot's time zero: a sample's session time is its robot time
+  // plus this (for data that comes from the robot beside its samples, e.g. link messages).
+  double robotTimeOffset_s() const { return time_offset_s_; }
   // Time of the newest sample the robot produced (may run ahead of the display under load).
   double robotTime_s() const { return robot_time_s_; }
   bool paused() const { return paused_; }

@@ -5,11 +5,13 @@
 // values survive a round trip; the enums below name the values the project uses.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string_view>
 #include <tuple>
 
+#include "comms/mavlink/field_info.hpp"
 #include "comms/mavlink/message_info.hpp"
 #include "comms/mavlink/wire.hpp"
 
@@ -489,6 +491,42 @@ struct Heartbeat {
     wire::get(payload, 8, m.mavlink_version);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 6> kFields{{
+      {"type", "", FieldType::kUint8, 4, -1, false, false},
+      {"autopilot", "", FieldType::kUint8, 5, -1, false, false},
+      {"base_mode", "", FieldType::kUint8, 6, -1, false, false},
+      {"custom_mode", "", FieldType::kUint32, 0, -1, false, false},
+      {"system_status", "", FieldType::kUint8, 7, -1, false, false},
+      {"mavlink_version", "", FieldType::kUint8, 8, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        type = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        autopilot = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        base_mode = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        custom_mode = static_cast<std::uint32_t>(value);
+        return true;
+      case 4:
+        system_status = static_cast<std::uint8_t>(value);
+        return true;
+      case 5:
+        mavlink_version = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const Heartbeat&, const Heartbeat&) = default;
 };
 
@@ -583,6 +621,82 @@ struct SysStatus {
     wire::get(payload, 39, m.onboard_control_sensors_health_extended);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 16> kFields{{
+      {"onboard_control_sensors_present", "", FieldType::kUint32, 0, -1, false, false},
+      {"onboard_control_sensors_enabled", "", FieldType::kUint32, 4, -1, false, false},
+      {"onboard_control_sensors_health", "", FieldType::kUint32, 8, -1, false, false},
+      {"load", "d%", FieldType::kUint16, 12, -1, false, false},
+      {"voltage_battery", "mV", FieldType::kUint16, 14, -1, false, false},
+      {"current_battery", "cA", FieldType::kInt16, 16, -1, false, false},
+      {"battery_remaining", "%", FieldType::kInt8, 30, -1, false, false},
+      {"drop_rate_comm", "c%", FieldType::kUint16, 18, -1, false, false},
+      {"errors_comm", "", FieldType::kUint16, 20, -1, false, false},
+      {"errors_count1", "", FieldType::kUint16, 22, -1, false, false},
+      {"errors_count2", "", FieldType::kUint16, 24, -1, false, false},
+      {"errors_count3", "", FieldType::kUint16, 26, -1, false, false},
+      {"errors_count4", "", FieldType::kUint16, 28, -1, false, false},
+      {"onboard_control_sensors_present_extended", "", FieldType::kUint32, 31, -1, false, true},
+      {"onboard_control_sensors_enabled_extended", "", FieldType::kUint32, 35, -1, false, true},
+      {"onboard_control_sensors_health_extended", "", FieldType::kUint32, 39, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        onboard_control_sensors_present = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        onboard_control_sensors_enabled = static_cast<std::uint32_t>(value);
+        return true;
+      case 2:
+        onboard_control_sensors_health = static_cast<std::uint32_t>(value);
+        return true;
+      case 3:
+        load = static_cast<std::uint16_t>(value);
+        return true;
+      case 4:
+        voltage_battery = static_cast<std::uint16_t>(value);
+        return true;
+      case 5:
+        current_battery = static_cast<std::int16_t>(value);
+        return true;
+      case 6:
+        battery_remaining = static_cast<std::int8_t>(value);
+        return true;
+      case 7:
+        drop_rate_comm = static_cast<std::uint16_t>(value);
+        return true;
+      case 8:
+        errors_comm = static_cast<std::uint16_t>(value);
+        return true;
+      case 9:
+        errors_count1 = static_cast<std::uint16_t>(value);
+        return true;
+      case 10:
+        errors_count2 = static_cast<std::uint16_t>(value);
+        return true;
+      case 11:
+        errors_count3 = static_cast<std::uint16_t>(value);
+        return true;
+      case 12:
+        errors_count4 = static_cast<std::uint16_t>(value);
+        return true;
+      case 13:
+        onboard_control_sensors_present_extended = static_cast<std::uint32_t>(value);
+        return true;
+      case 14:
+        onboard_control_sensors_enabled_extended = static_cast<std::uint32_t>(value);
+        return true;
+      case 15:
+        onboard_control_sensors_health_extended = static_cast<std::uint32_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const SysStatus&, const SysStatus&) = default;
 };
 
@@ -624,6 +738,30 @@ struct Statustext {
     wire::get(payload, 51, m.id);
     wire::get(payload, 53, m.chunk_seq);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 3> kFields{{
+      {"severity", "", FieldType::kUint8, 0, -1, false, false},
+      {"id", "", FieldType::kUint16, 51, -1, false, true},
+      {"chunk_seq", "", FieldType::kUint8, 53, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        severity = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        id = static_cast<std::uint16_t>(value);
+        return true;
+      case 2:
+        chunk_seq = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const Statustext&, const Statustext&) = default;
 };
@@ -685,6 +823,62 @@ struct CommandLong {
     wire::get(payload, 32, m.confirmation);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 11> kFields{{
+      {"target_system", "", FieldType::kUint8, 30, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 31, -1, false, false},
+      {"command", "", FieldType::kUint16, 28, -1, false, false},
+      {"confirmation", "", FieldType::kUint8, 32, -1, false, false},
+      {"param1", "", FieldType::kFloat, 0, -1, false, false},
+      {"param2", "", FieldType::kFloat, 4, -1, false, false},
+      {"param3", "", FieldType::kFloat, 8, -1, false, false},
+      {"param4", "", FieldType::kFloat, 12, -1, false, false},
+      {"param5", "", FieldType::kFloat, 16, -1, false, false},
+      {"param6", "", FieldType::kFloat, 20, -1, false, false},
+      {"param7", "", FieldType::kFloat, 24, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        command = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        confirmation = static_cast<std::uint8_t>(value);
+        return true;
+      case 4:
+        param1 = static_cast<float>(value);
+        return true;
+      case 5:
+        param2 = static_cast<float>(value);
+        return true;
+      case 6:
+        param3 = static_cast<float>(value);
+        return true;
+      case 7:
+        param4 = static_cast<float>(value);
+        return true;
+      case 8:
+        param5 = static_cast<float>(value);
+        return true;
+      case 9:
+        param6 = static_cast<float>(value);
+        return true;
+      case 10:
+        param7 = static_cast<float>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const CommandLong&, const CommandLong&) = default;
 };
 
@@ -734,6 +928,42 @@ struct CommandAck {
     wire::get(payload, 9, m.target_component);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 6> kFields{{
+      {"command", "", FieldType::kUint16, 0, -1, false, false},
+      {"result", "", FieldType::kUint8, 2, -1, false, false},
+      {"progress", "%", FieldType::kUint8, 3, -1, false, true},
+      {"result_param2", "", FieldType::kInt32, 4, -1, false, true},
+      {"target_system", "", FieldType::kUint8, 8, -1, false, true},
+      {"target_component", "", FieldType::kUint8, 9, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        command = static_cast<std::uint16_t>(value);
+        return true;
+      case 1:
+        result = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        progress = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        result_param2 = static_cast<std::int32_t>(value);
+        return true;
+      case 4:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 5:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const CommandAck&, const CommandAck&) = default;
 };
 
@@ -761,6 +991,26 @@ struct ParamRequestList {
     wire::get(payload, 0, m.target_system);
     wire::get(payload, 1, m.target_component);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 2> kFields{{
+      {"target_system", "", FieldType::kUint8, 0, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 1, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const ParamRequestList&, const ParamRequestList&) = default;
 };
@@ -804,6 +1054,30 @@ struct ParamRequestRead {
     wire::getArray(payload, 4, m.param_id);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 3> kFields{{
+      {"target_system", "", FieldType::kUint8, 2, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 3, -1, false, false},
+      {"param_index", "", FieldType::kInt16, 0, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        param_index = static_cast<std::int16_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const ParamRequestRead&, const ParamRequestRead&) = default;
 };
 
@@ -844,6 +1118,34 @@ struct ParamValue {
     wire::getArray(payload, 8, m.param_id);
     wire::get(payload, 24, m.param_type);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 4> kFields{{
+      {"param_value", "", FieldType::kFloat, 0, -1, false, false},
+      {"param_type", "", FieldType::kUint8, 24, -1, false, false},
+      {"param_count", "", FieldType::kUint16, 4, -1, false, false},
+      {"param_index", "", FieldType::kUint16, 6, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        param_value = static_cast<float>(value);
+        return true;
+      case 1:
+        param_type = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        param_count = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        param_index = static_cast<std::uint16_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const ParamValue&, const ParamValue&) = default;
 };
@@ -887,6 +1189,34 @@ struct ParamSet {
     wire::getArray(payload, 6, m.param_id);
     wire::get(payload, 22, m.param_type);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 4> kFields{{
+      {"target_system", "", FieldType::kUint8, 4, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 5, -1, false, false},
+      {"param_value", "", FieldType::kFloat, 0, -1, false, false},
+      {"param_type", "", FieldType::kUint8, 22, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        param_value = static_cast<float>(value);
+        return true;
+      case 3:
+        param_type = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const ParamSet&, const ParamSet&) = default;
 };
@@ -936,6 +1266,34 @@ struct Timesync {
     wire::get(payload, 16, m.target_system);
     wire::get(payload, 17, m.target_component);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 4> kFields{{
+      {"tc1", "ns", FieldType::kInt64, 0, -1, false, false},
+      {"ts1", "ns", FieldType::kInt64, 8, -1, false, false},
+      {"target_system", "", FieldType::kUint8, 16, -1, false, true},
+      {"target_component", "", FieldType::kUint8, 17, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        tc1 = static_cast<std::int64_t>(value);
+        return true;
+      case 1:
+        ts1 = static_cast<std::int64_t>(value);
+        return true;
+      case 2:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const Timesync&, const Timesync&) = default;
 };
@@ -1046,6 +1404,82 @@ struct ManualControl {
     wire::get(payload, 28, m.aux6);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 16> kFields{{
+      {"target", "", FieldType::kUint8, 10, -1, false, false},
+      {"x", "", FieldType::kInt16, 0, -1, false, false},
+      {"y", "", FieldType::kInt16, 2, -1, false, false},
+      {"z", "", FieldType::kInt16, 4, -1, false, false},
+      {"r", "", FieldType::kInt16, 6, -1, false, false},
+      {"buttons", "", FieldType::kUint16, 8, -1, false, false},
+      {"buttons2", "", FieldType::kUint16, 11, -1, false, true},
+      {"enabled_extensions", "", FieldType::kUint8, 13, -1, false, true},
+      {"s", "", FieldType::kInt16, 14, -1, false, true},
+      {"t", "", FieldType::kInt16, 16, -1, false, true},
+      {"aux1", "", FieldType::kInt16, 18, -1, false, true},
+      {"aux2", "", FieldType::kInt16, 20, -1, false, true},
+      {"aux3", "", FieldType::kInt16, 22, -1, false, true},
+      {"aux4", "", FieldType::kInt16, 24, -1, false, true},
+      {"aux5", "", FieldType::kInt16, 26, -1, false, true},
+      {"aux6", "", FieldType::kInt16, 28, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        x = static_cast<std::int16_t>(value);
+        return true;
+      case 2:
+        y = static_cast<std::int16_t>(value);
+        return true;
+      case 3:
+        z = static_cast<std::int16_t>(value);
+        return true;
+      case 4:
+        r = static_cast<std::int16_t>(value);
+        return true;
+      case 5:
+        buttons = static_cast<std::uint16_t>(value);
+        return true;
+      case 6:
+        buttons2 = static_cast<std::uint16_t>(value);
+        return true;
+      case 7:
+        enabled_extensions = static_cast<std::uint8_t>(value);
+        return true;
+      case 8:
+        s = static_cast<std::int16_t>(value);
+        return true;
+      case 9:
+        t = static_cast<std::int16_t>(value);
+        return true;
+      case 10:
+        aux1 = static_cast<std::int16_t>(value);
+        return true;
+      case 11:
+        aux2 = static_cast<std::int16_t>(value);
+        return true;
+      case 12:
+        aux3 = static_cast<std::int16_t>(value);
+        return true;
+      case 13:
+        aux4 = static_cast<std::int16_t>(value);
+        return true;
+      case 14:
+        aux5 = static_cast<std::int16_t>(value);
+        return true;
+      case 15:
+        aux6 = static_cast<std::int16_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const ManualControl&, const ManualControl&) = default;
 };
 
@@ -1117,6 +1551,78 @@ struct DistanceSensor {
     wire::get(payload, 38, m.signal_quality);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 15> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"min_distance", "cm", FieldType::kUint16, 4, -1, false, false},
+      {"max_distance", "cm", FieldType::kUint16, 6, -1, false, false},
+      {"current_distance", "cm", FieldType::kUint16, 8, -1, false, false},
+      {"type", "", FieldType::kUint8, 10, -1, false, false},
+      {"id", "", FieldType::kUint8, 11, -1, true, false},
+      {"orientation", "", FieldType::kUint8, 12, -1, false, false},
+      {"covariance", "cm^2", FieldType::kUint8, 13, -1, false, false},
+      {"horizontal_fov", "rad", FieldType::kFloat, 14, -1, false, true},
+      {"vertical_fov", "rad", FieldType::kFloat, 18, -1, false, true},
+      {"quaternion", "", FieldType::kFloat, 22, 0, false, true},
+      {"quaternion", "", FieldType::kFloat, 26, 1, false, true},
+      {"quaternion", "", FieldType::kFloat, 30, 2, false, true},
+      {"quaternion", "", FieldType::kFloat, 34, 3, false, true},
+      {"signal_quality", "%", FieldType::kUint8, 38, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        min_distance = static_cast<std::uint16_t>(value);
+        return true;
+      case 2:
+        max_distance = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        current_distance = static_cast<std::uint16_t>(value);
+        return true;
+      case 4:
+        type = static_cast<std::uint8_t>(value);
+        return true;
+      case 5:
+        id = static_cast<std::uint8_t>(value);
+        return true;
+      case 6:
+        orientation = static_cast<std::uint8_t>(value);
+        return true;
+      case 7:
+        covariance = static_cast<std::uint8_t>(value);
+        return true;
+      case 8:
+        horizontal_fov = static_cast<float>(value);
+        return true;
+      case 9:
+        vertical_fov = static_cast<float>(value);
+        return true;
+      case 10:
+        quaternion[0] = static_cast<float>(value);
+        return true;
+      case 11:
+        quaternion[1] = static_cast<float>(value);
+        return true;
+      case 12:
+        quaternion[2] = static_cast<float>(value);
+        return true;
+      case 13:
+        quaternion[3] = static_cast<float>(value);
+        return true;
+      case 14:
+        signal_quality = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const DistanceSensor&, const DistanceSensor&) = default;
 };
 
@@ -1182,6 +1688,66 @@ struct RawImu {
     wire::get(payload, 27, m.temperature);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 12> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"xacc", "", FieldType::kInt16, 8, -1, false, false},
+      {"yacc", "", FieldType::kInt16, 10, -1, false, false},
+      {"zacc", "", FieldType::kInt16, 12, -1, false, false},
+      {"xgyro", "", FieldType::kInt16, 14, -1, false, false},
+      {"ygyro", "", FieldType::kInt16, 16, -1, false, false},
+      {"zgyro", "", FieldType::kInt16, 18, -1, false, false},
+      {"xmag", "", FieldType::kInt16, 20, -1, false, false},
+      {"ymag", "", FieldType::kInt16, 22, -1, false, false},
+      {"zmag", "", FieldType::kInt16, 24, -1, false, false},
+      {"id", "", FieldType::kUint8, 26, -1, true, true},
+      {"temperature", "cdegC", FieldType::kInt16, 27, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        xacc = static_cast<std::int16_t>(value);
+        return true;
+      case 2:
+        yacc = static_cast<std::int16_t>(value);
+        return true;
+      case 3:
+        zacc = static_cast<std::int16_t>(value);
+        return true;
+      case 4:
+        xgyro = static_cast<std::int16_t>(value);
+        return true;
+      case 5:
+        ygyro = static_cast<std::int16_t>(value);
+        return true;
+      case 6:
+        zgyro = static_cast<std::int16_t>(value);
+        return true;
+      case 7:
+        xmag = static_cast<std::int16_t>(value);
+        return true;
+      case 8:
+        ymag = static_cast<std::int16_t>(value);
+        return true;
+      case 9:
+        zmag = static_cast<std::int16_t>(value);
+        return true;
+      case 10:
+        id = static_cast<std::uint8_t>(value);
+        return true;
+      case 11:
+        temperature = static_cast<std::int16_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const RawImu&, const RawImu&) = default;
 };
 
@@ -1238,6 +1804,62 @@ struct ScaledImu {
     wire::get(payload, 22, m.temperature);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 11> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"xacc", "mG", FieldType::kInt16, 4, -1, false, false},
+      {"yacc", "mG", FieldType::kInt16, 6, -1, false, false},
+      {"zacc", "mG", FieldType::kInt16, 8, -1, false, false},
+      {"xgyro", "mrad/s", FieldType::kInt16, 10, -1, false, false},
+      {"ygyro", "mrad/s", FieldType::kInt16, 12, -1, false, false},
+      {"zgyro", "mrad/s", FieldType::kInt16, 14, -1, false, false},
+      {"xmag", "mgauss", FieldType::kInt16, 16, -1, false, false},
+      {"ymag", "mgauss", FieldType::kInt16, 18, -1, false, false},
+      {"zmag", "mgauss", FieldType::kInt16, 20, -1, false, false},
+      {"temperature", "cdegC", FieldType::kInt16, 22, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        xacc = static_cast<std::int16_t>(value);
+        return true;
+      case 2:
+        yacc = static_cast<std::int16_t>(value);
+        return true;
+      case 3:
+        zacc = static_cast<std::int16_t>(value);
+        return true;
+      case 4:
+        xgyro = static_cast<std::int16_t>(value);
+        return true;
+      case 5:
+        ygyro = static_cast<std::int16_t>(value);
+        return true;
+      case 6:
+        zgyro = static_cast<std::int16_t>(value);
+        return true;
+      case 7:
+        xmag = static_cast<std::int16_t>(value);
+        return true;
+      case 8:
+        ymag = static_cast<std::int16_t>(value);
+        return true;
+      case 9:
+        zmag = static_cast<std::int16_t>(value);
+        return true;
+      case 10:
+        temperature = static_cast<std::int16_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const ScaledImu&, const ScaledImu&) = default;
 };
 
@@ -1280,6 +1902,46 @@ struct Attitude {
     wire::get(payload, 24, m.yawspeed);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 7> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"roll", "rad", FieldType::kFloat, 4, -1, false, false},
+      {"pitch", "rad", FieldType::kFloat, 8, -1, false, false},
+      {"yaw", "rad", FieldType::kFloat, 12, -1, false, false},
+      {"rollspeed", "rad/s", FieldType::kFloat, 16, -1, false, false},
+      {"pitchspeed", "rad/s", FieldType::kFloat, 20, -1, false, false},
+      {"yawspeed", "rad/s", FieldType::kFloat, 24, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        roll = static_cast<float>(value);
+        return true;
+      case 2:
+        pitch = static_cast<float>(value);
+        return true;
+      case 3:
+        yaw = static_cast<float>(value);
+        return true;
+      case 4:
+        rollspeed = static_cast<float>(value);
+        return true;
+      case 5:
+        pitchspeed = static_cast<float>(value);
+        return true;
+      case 6:
+        yawspeed = static_cast<float>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const Attitude&, const Attitude&) = default;
 };
 
@@ -1311,6 +1973,90 @@ struct WheelDistance {
     wire::getArray(payload, 8, m.distance);
     wire::get(payload, 136, m.count);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 18> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"count", "", FieldType::kUint8, 136, -1, false, false},
+      {"distance", "m", FieldType::kDouble, 8, 0, false, false},
+      {"distance", "m", FieldType::kDouble, 16, 1, false, false},
+      {"distance", "m", FieldType::kDouble, 24, 2, false, false},
+      {"distance", "m", FieldType::kDouble, 32, 3, false, false},
+      {"distance", "m", FieldType::kDouble, 40, 4, false, false},
+      {"distance", "m", FieldType::kDouble, 48, 5, false, false},
+      {"distance", "m", FieldType::kDouble, 56, 6, false, false},
+      {"distance", "m", FieldType::kDouble, 64, 7, false, false},
+      {"distance", "m", FieldType::kDouble, 72, 8, false, false},
+      {"distance", "m", FieldType::kDouble, 80, 9, false, false},
+      {"distance", "m", FieldType::kDouble, 88, 10, false, false},
+      {"distance", "m", FieldType::kDouble, 96, 11, false, false},
+      {"distance", "m", FieldType::kDouble, 104, 12, false, false},
+      {"distance", "m", FieldType::kDouble, 112, 13, false, false},
+      {"distance", "m", FieldType::kDouble, 120, 14, false, false},
+      {"distance", "m", FieldType::kDouble, 128, 15, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        count = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        distance[0] = static_cast<double>(value);
+        return true;
+      case 3:
+        distance[1] = static_cast<double>(value);
+        return true;
+      case 4:
+        distance[2] = static_cast<double>(value);
+        return true;
+      case 5:
+        distance[3] = static_cast<double>(value);
+        return true;
+      case 6:
+        distance[4] = static_cast<double>(value);
+        return true;
+      case 7:
+        distance[5] = static_cast<double>(value);
+        return true;
+      case 8:
+        distance[6] = static_cast<double>(value);
+        return true;
+      case 9:
+        distance[7] = static_cast<double>(value);
+        return true;
+      case 10:
+        distance[8] = static_cast<double>(value);
+        return true;
+      case 11:
+        distance[9] = static_cast<double>(value);
+        return true;
+      case 12:
+        distance[10] = static_cast<double>(value);
+        return true;
+      case 13:
+        distance[11] = static_cast<double>(value);
+        return true;
+      case 14:
+        distance[12] = static_cast<double>(value);
+        return true;
+      case 15:
+        distance[13] = static_cast<double>(value);
+        return true;
+      case 16:
+        distance[14] = static_cast<double>(value);
+        return true;
+      case 17:
+        distance[15] = static_cast<double>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const WheelDistance&, const WheelDistance&) = default;
 };
@@ -1404,6 +2150,262 @@ struct Odometry {
     wire::get(payload, 232, m.quality);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 61> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"frame_id", "", FieldType::kUint8, 228, -1, false, false},
+      {"child_frame_id", "", FieldType::kUint8, 229, -1, false, false},
+      {"x", "m", FieldType::kFloat, 8, -1, false, false},
+      {"y", "m", FieldType::kFloat, 12, -1, false, false},
+      {"z", "m", FieldType::kFloat, 16, -1, false, false},
+      {"q", "", FieldType::kFloat, 20, 0, false, false},
+      {"q", "", FieldType::kFloat, 24, 1, false, false},
+      {"q", "", FieldType::kFloat, 28, 2, false, false},
+      {"q", "", FieldType::kFloat, 32, 3, false, false},
+      {"vx", "m/s", FieldType::kFloat, 36, -1, false, false},
+      {"vy", "m/s", FieldType::kFloat, 40, -1, false, false},
+      {"vz", "m/s", FieldType::kFloat, 44, -1, false, false},
+      {"rollspeed", "rad/s", FieldType::kFloat, 48, -1, false, false},
+      {"pitchspeed", "rad/s", FieldType::kFloat, 52, -1, false, false},
+      {"yawspeed", "rad/s", FieldType::kFloat, 56, -1, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 60, 0, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 64, 1, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 68, 2, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 72, 3, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 76, 4, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 80, 5, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 84, 6, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 88, 7, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 92, 8, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 96, 9, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 100, 10, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 104, 11, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 108, 12, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 112, 13, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 116, 14, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 120, 15, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 124, 16, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 128, 17, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 132, 18, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 136, 19, false, false},
+      {"pose_covariance", "", FieldType::kFloat, 140, 20, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 144, 0, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 148, 1, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 152, 2, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 156, 3, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 160, 4, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 164, 5, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 168, 6, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 172, 7, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 176, 8, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 180, 9, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 184, 10, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 188, 11, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 192, 12, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 196, 13, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 200, 14, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 204, 15, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 208, 16, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 212, 17, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 216, 18, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 220, 19, false, false},
+      {"velocity_covariance", "", FieldType::kFloat, 224, 20, false, false},
+      {"reset_counter", "", FieldType::kUint8, 230, -1, false, true},
+      {"estimator_type", "", FieldType::kUint8, 231, -1, false, true},
+      {"quality", "%", FieldType::kInt8, 232, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        frame_id = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        child_frame_id = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        x = static_cast<float>(value);
+        return true;
+      case 4:
+        y = static_cast<float>(value);
+        return true;
+      case 5:
+        z = static_cast<float>(value);
+        return true;
+      case 6:
+        q[0] = static_cast<float>(value);
+        return true;
+      case 7:
+        q[1] = static_cast<float>(value);
+        return true;
+      case 8:
+        q[2] = static_cast<float>(value);
+        return true;
+      case 9:
+        q[3] = static_cast<float>(value);
+        return true;
+      case 10:
+        vx = static_cast<float>(value);
+        return true;
+      case 11:
+        vy = static_cast<float>(value);
+        return true;
+      case 12:
+        vz = static_cast<float>(value);
+        return true;
+      case 13:
+        rollspeed = static_cast<float>(value);
+        return true;
+      case 14:
+        pitchspeed = static_cast<float>(value);
+        return true;
+      case 15:
+        yawspeed = static_cast<float>(value);
+        return true;
+      case 16:
+        pose_covariance[0] = static_cast<float>(value);
+        return true;
+      case 17:
+        pose_covariance[1] = static_cast<float>(value);
+        return true;
+      case 18:
+        pose_covariance[2] = static_cast<float>(value);
+        return true;
+      case 19:
+        pose_covariance[3] = static_cast<float>(value);
+        return true;
+      case 20:
+        pose_covariance[4] = static_cast<float>(value);
+        return true;
+      case 21:
+        pose_covariance[5] = static_cast<float>(value);
+        return true;
+      case 22:
+        pose_covariance[6] = static_cast<float>(value);
+        return true;
+      case 23:
+        pose_covariance[7] = static_cast<float>(value);
+        return true;
+      case 24:
+        pose_covariance[8] = static_cast<float>(value);
+        return true;
+      case 25:
+        pose_covariance[9] = static_cast<float>(value);
+        return true;
+      case 26:
+        pose_covariance[10] = static_cast<float>(value);
+        return true;
+      case 27:
+        pose_covariance[11] = static_cast<float>(value);
+        return true;
+      case 28:
+        pose_covariance[12] = static_cast<float>(value);
+        return true;
+      case 29:
+        pose_covariance[13] = static_cast<float>(value);
+        return true;
+      case 30:
+        pose_covariance[14] = static_cast<float>(value);
+        return true;
+      case 31:
+        pose_covariance[15] = static_cast<float>(value);
+        return true;
+      case 32:
+        pose_covariance[16] = static_cast<float>(value);
+        return true;
+      case 33:
+        pose_covariance[17] = static_cast<float>(value);
+        return true;
+      case 34:
+        pose_covariance[18] = static_cast<float>(value);
+        return true;
+      case 35:
+        pose_covariance[19] = static_cast<float>(value);
+        return true;
+      case 36:
+        pose_covariance[20] = static_cast<float>(value);
+        return true;
+      case 37:
+        velocity_covariance[0] = static_cast<float>(value);
+        return true;
+      case 38:
+        velocity_covariance[1] = static_cast<float>(value);
+        return true;
+      case 39:
+        velocity_covariance[2] = static_cast<float>(value);
+        return true;
+      case 40:
+        velocity_covariance[3] = static_cast<float>(value);
+        return true;
+      case 41:
+        velocity_covariance[4] = static_cast<float>(value);
+        return true;
+      case 42:
+        velocity_covariance[5] = static_cast<float>(value);
+        return true;
+      case 43:
+        velocity_covariance[6] = static_cast<float>(value);
+        return true;
+      case 44:
+        velocity_covariance[7] = static_cast<float>(value);
+        return true;
+      case 45:
+        velocity_covariance[8] = static_cast<float>(value);
+        return true;
+      case 46:
+        velocity_covariance[9] = static_cast<float>(value);
+        return true;
+      case 47:
+        velocity_covariance[10] = static_cast<float>(value);
+        return true;
+      case 48:
+        velocity_covariance[11] = static_cast<float>(value);
+        return true;
+      case 49:
+        velocity_covariance[12] = static_cast<float>(value);
+        return true;
+      case 50:
+        velocity_covariance[13] = static_cast<float>(value);
+        return true;
+      case 51:
+        velocity_covariance[14] = static_cast<float>(value);
+        return true;
+      case 52:
+        velocity_covariance[15] = static_cast<float>(value);
+        return true;
+      case 53:
+        velocity_covariance[16] = static_cast<float>(value);
+        return true;
+      case 54:
+        velocity_covariance[17] = static_cast<float>(value);
+        return true;
+      case 55:
+        velocity_covariance[18] = static_cast<float>(value);
+        return true;
+      case 56:
+        velocity_covariance[19] = static_cast<float>(value);
+        return true;
+      case 57:
+        velocity_covariance[20] = static_cast<float>(value);
+        return true;
+      case 58:
+        reset_counter = static_cast<std::uint8_t>(value);
+        return true;
+      case 59:
+        estimator_type = static_cast<std::uint8_t>(value);
+        return true;
+      case 60:
+        quality = static_cast<std::int8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const Odometry&, const Odometry&) = default;
 };
 
@@ -1447,6 +2449,46 @@ struct LocalPositionNed {
     wire::get(payload, 24, m.vz);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 7> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"x", "m", FieldType::kFloat, 4, -1, false, false},
+      {"y", "m", FieldType::kFloat, 8, -1, false, false},
+      {"z", "m", FieldType::kFloat, 12, -1, false, false},
+      {"vx", "m/s", FieldType::kFloat, 16, -1, false, false},
+      {"vy", "m/s", FieldType::kFloat, 20, -1, false, false},
+      {"vz", "m/s", FieldType::kFloat, 24, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        x = static_cast<float>(value);
+        return true;
+      case 2:
+        y = static_cast<float>(value);
+        return true;
+      case 3:
+        z = static_cast<float>(value);
+        return true;
+      case 4:
+        vx = static_cast<float>(value);
+        return true;
+      case 5:
+        vy = static_cast<float>(value);
+        return true;
+      case 6:
+        vz = static_cast<float>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const LocalPositionNed&, const LocalPositionNed&) = default;
 };
 
@@ -1476,6 +2518,30 @@ struct MissionRequestList {
     wire::get(payload, 1, m.target_component);
     wire::get(payload, 2, m.mission_type);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 3> kFields{{
+      {"target_system", "", FieldType::kUint8, 0, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 1, -1, false, false},
+      {"mission_type", "", FieldType::kUint8, 2, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        mission_type = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const MissionRequestList&, const MissionRequestList&) = default;
 };
@@ -1521,6 +2587,38 @@ struct MissionCount {
     wire::get(payload, 5, m.opaque_id);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 5> kFields{{
+      {"target_system", "", FieldType::kUint8, 2, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 3, -1, false, false},
+      {"count", "", FieldType::kUint16, 0, -1, false, false},
+      {"mission_type", "", FieldType::kUint8, 4, -1, false, true},
+      {"opaque_id", "", FieldType::kUint32, 5, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        count = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        mission_type = static_cast<std::uint8_t>(value);
+        return true;
+      case 4:
+        opaque_id = static_cast<std::uint32_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const MissionCount&, const MissionCount&) = default;
 };
 
@@ -1554,6 +2652,34 @@ struct MissionRequestInt {
     wire::get(payload, 3, m.target_component);
     wire::get(payload, 4, m.mission_type);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 4> kFields{{
+      {"target_system", "", FieldType::kUint8, 2, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 3, -1, false, false},
+      {"seq", "", FieldType::kUint16, 0, -1, false, false},
+      {"mission_type", "", FieldType::kUint8, 4, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        seq = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        mission_type = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const MissionRequestInt&, const MissionRequestInt&) = default;
 };
@@ -1633,6 +2759,78 @@ struct MissionItemInt {
     wire::get(payload, 37, m.mission_type);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 15> kFields{{
+      {"target_system", "", FieldType::kUint8, 32, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 33, -1, false, false},
+      {"seq", "", FieldType::kUint16, 28, -1, false, false},
+      {"frame", "", FieldType::kUint8, 34, -1, false, false},
+      {"command", "", FieldType::kUint16, 30, -1, false, false},
+      {"current", "", FieldType::kUint8, 35, -1, false, false},
+      {"autocontinue", "", FieldType::kUint8, 36, -1, false, false},
+      {"param1", "", FieldType::kFloat, 0, -1, false, false},
+      {"param2", "", FieldType::kFloat, 4, -1, false, false},
+      {"param3", "", FieldType::kFloat, 8, -1, false, false},
+      {"param4", "", FieldType::kFloat, 12, -1, false, false},
+      {"x", "", FieldType::kInt32, 16, -1, false, false},
+      {"y", "", FieldType::kInt32, 20, -1, false, false},
+      {"z", "", FieldType::kFloat, 24, -1, false, false},
+      {"mission_type", "", FieldType::kUint8, 37, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        seq = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        frame = static_cast<std::uint8_t>(value);
+        return true;
+      case 4:
+        command = static_cast<std::uint16_t>(value);
+        return true;
+      case 5:
+        current = static_cast<std::uint8_t>(value);
+        return true;
+      case 6:
+        autocontinue = static_cast<std::uint8_t>(value);
+        return true;
+      case 7:
+        param1 = static_cast<float>(value);
+        return true;
+      case 8:
+        param2 = static_cast<float>(value);
+        return true;
+      case 9:
+        param3 = static_cast<float>(value);
+        return true;
+      case 10:
+        param4 = static_cast<float>(value);
+        return true;
+      case 11:
+        x = static_cast<std::int32_t>(value);
+        return true;
+      case 12:
+        y = static_cast<std::int32_t>(value);
+        return true;
+      case 13:
+        z = static_cast<float>(value);
+        return true;
+      case 14:
+        mission_type = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const MissionItemInt&, const MissionItemInt&) = default;
 };
 
@@ -1676,6 +2874,38 @@ struct MissionAck {
     wire::get(payload, 4, m.opaque_id);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 5> kFields{{
+      {"target_system", "", FieldType::kUint8, 0, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 1, -1, false, false},
+      {"type", "", FieldType::kUint8, 2, -1, false, false},
+      {"mission_type", "", FieldType::kUint8, 3, -1, false, true},
+      {"opaque_id", "", FieldType::kUint32, 4, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        type = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        mission_type = static_cast<std::uint8_t>(value);
+        return true;
+      case 4:
+        opaque_id = static_cast<std::uint32_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const MissionAck&, const MissionAck&) = default;
 };
 
@@ -1704,6 +2934,30 @@ struct MissionClearAll {
     wire::get(payload, 1, m.target_component);
     wire::get(payload, 2, m.mission_type);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 3> kFields{{
+      {"target_system", "", FieldType::kUint8, 0, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 1, -1, false, false},
+      {"mission_type", "", FieldType::kUint8, 2, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 1:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        mission_type = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const MissionClearAll&, const MissionClearAll&) = default;
 };
@@ -1765,6 +3019,46 @@ struct MissionCurrent {
     wire::get(payload, 14, m.rally_points_id);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 7> kFields{{
+      {"seq", "", FieldType::kUint16, 0, -1, false, false},
+      {"total", "", FieldType::kUint16, 2, -1, false, true},
+      {"mission_state", "", FieldType::kUint8, 4, -1, false, true},
+      {"mission_mode", "", FieldType::kUint8, 5, -1, false, true},
+      {"mission_id", "", FieldType::kUint32, 6, -1, false, true},
+      {"fence_id", "", FieldType::kUint32, 10, -1, false, true},
+      {"rally_points_id", "", FieldType::kUint32, 14, -1, false, true},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        seq = static_cast<std::uint16_t>(value);
+        return true;
+      case 1:
+        total = static_cast<std::uint16_t>(value);
+        return true;
+      case 2:
+        mission_state = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        mission_mode = static_cast<std::uint8_t>(value);
+        return true;
+      case 4:
+        mission_id = static_cast<std::uint32_t>(value);
+        return true;
+      case 5:
+        fence_id = static_cast<std::uint32_t>(value);
+        return true;
+      case 6:
+        rally_points_id = static_cast<std::uint32_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const MissionCurrent&, const MissionCurrent&) = default;
 };
 
@@ -1787,6 +3081,22 @@ struct MissionItemReached {
     MissionItemReached m;
     wire::get(payload, 0, m.seq);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 1> kFields{{
+      {"seq", "", FieldType::kUint16, 0, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        seq = static_cast<std::uint16_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const MissionItemReached&, const MissionItemReached&) = default;
 };
@@ -1831,6 +3141,46 @@ struct IrgsStereoSonar {
     wire::get(payload, 25, m.flags);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 7> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"sensor_id", "", FieldType::kUint8, 24, -1, true, false},
+      {"flags", "", FieldType::kUint8, 25, -1, false, false},
+      {"r1", "m", FieldType::kFloat, 8, -1, false, false},
+      {"r2", "m", FieldType::kFloat, 12, -1, false, false},
+      {"tof1", "us", FieldType::kUint32, 16, -1, false, false},
+      {"tof2", "us", FieldType::kUint32, 20, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        sensor_id = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        flags = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        r1 = static_cast<float>(value);
+        return true;
+      case 4:
+        r2 = static_cast<float>(value);
+        return true;
+      case 5:
+        tof1 = static_cast<std::uint32_t>(value);
+        return true;
+      case 6:
+        tof2 = static_cast<std::uint32_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const IrgsStereoSonar&, const IrgsStereoSonar&) = default;
 };
 
@@ -1859,6 +3209,30 @@ struct IrgsEncoderTicks {
     wire::get(payload, 8, m.left_ticks);
     wire::get(payload, 16, m.right_ticks);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 3> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"left_ticks", "", FieldType::kInt64, 8, -1, false, false},
+      {"right_ticks", "", FieldType::kInt64, 16, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        left_ticks = static_cast<std::int64_t>(value);
+        return true;
+      case 2:
+        right_ticks = static_cast<std::int64_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const IrgsEncoderTicks&, const IrgsEncoderTicks&) = default;
 };
@@ -1892,6 +3266,78 @@ struct IrgsContact {
     wire::getArray(payload, 8, m.proximity);
     wire::get(payload, 32, m.proximity_count);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 15> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"bumpers", "", FieldType::kUint32, 4, -1, false, false},
+      {"proximity_count", "", FieldType::kUint8, 32, -1, false, false},
+      {"proximity", "mm", FieldType::kUint16, 8, 0, false, false},
+      {"proximity", "mm", FieldType::kUint16, 10, 1, false, false},
+      {"proximity", "mm", FieldType::kUint16, 12, 2, false, false},
+      {"proximity", "mm", FieldType::kUint16, 14, 3, false, false},
+      {"proximity", "mm", FieldType::kUint16, 16, 4, false, false},
+      {"proximity", "mm", FieldType::kUint16, 18, 5, false, false},
+      {"proximity", "mm", FieldType::kUint16, 20, 6, false, false},
+      {"proximity", "mm", FieldType::kUint16, 22, 7, false, false},
+      {"proximity", "mm", FieldType::kUint16, 24, 8, false, false},
+      {"proximity", "mm", FieldType::kUint16, 26, 9, false, false},
+      {"proximity", "mm", FieldType::kUint16, 28, 10, false, false},
+      {"proximity", "mm", FieldType::kUint16, 30, 11, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        bumpers = static_cast<std::uint32_t>(value);
+        return true;
+      case 2:
+        proximity_count = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        proximity[0] = static_cast<std::uint16_t>(value);
+        return true;
+      case 4:
+        proximity[1] = static_cast<std::uint16_t>(value);
+        return true;
+      case 5:
+        proximity[2] = static_cast<std::uint16_t>(value);
+        return true;
+      case 6:
+        proximity[3] = static_cast<std::uint16_t>(value);
+        return true;
+      case 7:
+        proximity[4] = static_cast<std::uint16_t>(value);
+        return true;
+      case 8:
+        proximity[5] = static_cast<std::uint16_t>(value);
+        return true;
+      case 9:
+        proximity[6] = static_cast<std::uint16_t>(value);
+        return true;
+      case 10:
+        proximity[7] = static_cast<std::uint16_t>(value);
+        return true;
+      case 11:
+        proximity[8] = static_cast<std::uint16_t>(value);
+        return true;
+      case 12:
+        proximity[9] = static_cast<std::uint16_t>(value);
+        return true;
+      case 13:
+        proximity[10] = static_cast<std::uint16_t>(value);
+        return true;
+      case 14:
+        proximity[11] = static_cast<std::uint16_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const IrgsContact&, const IrgsContact&) = default;
 };
@@ -1927,6 +3373,34 @@ struct IrgsBehaviourStatus {
     wire::get(payload, 10, m.state);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 4> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"command", "", FieldType::kUint16, 8, -1, false, false},
+      {"state", "", FieldType::kUint8, 10, -1, false, false},
+      {"progress", "m", FieldType::kFloat, 4, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        command = static_cast<std::uint16_t>(value);
+        return true;
+      case 2:
+        state = static_cast<std::uint8_t>(value);
+        return true;
+      case 3:
+        progress = static_cast<float>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const IrgsBehaviourStatus&, const IrgsBehaviourStatus&) = default;
 };
 
@@ -1961,6 +3435,78 @@ struct IrgsSonarScan {
     wire::getArray(payload, 6, m.range);
     wire::get(payload, 30, m.count);
     return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 15> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"count", "", FieldType::kUint8, 30, -1, false, false},
+      {"fired", "", FieldType::kUint16, 4, -1, false, false},
+      {"range", "mm", FieldType::kUint16, 6, 0, false, false},
+      {"range", "mm", FieldType::kUint16, 8, 1, false, false},
+      {"range", "mm", FieldType::kUint16, 10, 2, false, false},
+      {"range", "mm", FieldType::kUint16, 12, 3, false, false},
+      {"range", "mm", FieldType::kUint16, 14, 4, false, false},
+      {"range", "mm", FieldType::kUint16, 16, 5, false, false},
+      {"range", "mm", FieldType::kUint16, 18, 6, false, false},
+      {"range", "mm", FieldType::kUint16, 20, 7, false, false},
+      {"range", "mm", FieldType::kUint16, 22, 8, false, false},
+      {"range", "mm", FieldType::kUint16, 24, 9, false, false},
+      {"range", "mm", FieldType::kUint16, 26, 10, false, false},
+      {"range", "mm", FieldType::kUint16, 28, 11, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        count = static_cast<std::uint8_t>(value);
+        return true;
+      case 2:
+        fired = static_cast<std::uint16_t>(value);
+        return true;
+      case 3:
+        range[0] = static_cast<std::uint16_t>(value);
+        return true;
+      case 4:
+        range[1] = static_cast<std::uint16_t>(value);
+        return true;
+      case 5:
+        range[2] = static_cast<std::uint16_t>(value);
+        return true;
+      case 6:
+        range[3] = static_cast<std::uint16_t>(value);
+        return true;
+      case 7:
+        range[4] = static_cast<std::uint16_t>(value);
+        return true;
+      case 8:
+        range[5] = static_cast<std::uint16_t>(value);
+        return true;
+      case 9:
+        range[6] = static_cast<std::uint16_t>(value);
+        return true;
+      case 10:
+        range[7] = static_cast<std::uint16_t>(value);
+        return true;
+      case 11:
+        range[8] = static_cast<std::uint16_t>(value);
+        return true;
+      case 12:
+        range[9] = static_cast<std::uint16_t>(value);
+        return true;
+      case 13:
+        range[10] = static_cast<std::uint16_t>(value);
+        return true;
+      case 14:
+        range[11] = static_cast<std::uint16_t>(value);
+        return true;
+      default:
+        return false;
+    }
   }
   friend bool operator==(const IrgsSonarScan&, const IrgsSonarScan&) = default;
 };
@@ -2002,6 +3548,42 @@ struct IrgsPose2d {
     wire::get(payload, 20, m.omega);
     return m;
   }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 6> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"x", "m", FieldType::kFloat, 4, -1, false, false},
+      {"y", "m", FieldType::kFloat, 8, -1, false, false},
+      {"theta", "rad", FieldType::kFloat, 12, -1, false, false},
+      {"v", "m/s", FieldType::kFloat, 16, -1, false, false},
+      {"omega", "rad/s", FieldType::kFloat, 20, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        x = static_cast<float>(value);
+        return true;
+      case 2:
+        y = static_cast<float>(value);
+        return true;
+      case 3:
+        theta = static_cast<float>(value);
+        return true;
+      case 4:
+        v = static_cast<float>(value);
+        return true;
+      case 5:
+        omega = static_cast<float>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
   friend bool operator==(const IrgsPose2d&, const IrgsPose2d&) = default;
 };
 
@@ -2023,6 +3605,26 @@ inline constexpr std::array<MessageInfo, 32> kGeneratedMessages{{
     messageInfoOf<IrgsStereoSonar>(),    messageInfoOf<IrgsEncoderTicks>(),
     messageInfoOf<IrgsContact>(),        messageInfoOf<IrgsBehaviourStatus>(),
     messageInfoOf<IrgsSonarScan>(),      messageInfoOf<IrgsPose2d>(),
+}};
+
+// Every generated message's field table, sorted by id (findMessageFields searches it).
+inline constexpr std::array<MessageFields, 32> kGeneratedMessageFields{{
+    messageFieldsOf<Heartbeat>(),          messageFieldsOf<SysStatus>(),
+    messageFieldsOf<ParamRequestRead>(),   messageFieldsOf<ParamRequestList>(),
+    messageFieldsOf<ParamValue>(),         messageFieldsOf<ParamSet>(),
+    messageFieldsOf<ScaledImu>(),          messageFieldsOf<RawImu>(),
+    messageFieldsOf<Attitude>(),           messageFieldsOf<LocalPositionNed>(),
+    messageFieldsOf<MissionCurrent>(),     messageFieldsOf<MissionRequestList>(),
+    messageFieldsOf<MissionCount>(),       messageFieldsOf<MissionClearAll>(),
+    messageFieldsOf<MissionItemReached>(), messageFieldsOf<MissionAck>(),
+    messageFieldsOf<MissionRequestInt>(),  messageFieldsOf<ManualControl>(),
+    messageFieldsOf<MissionItemInt>(),     messageFieldsOf<CommandLong>(),
+    messageFieldsOf<CommandAck>(),         messageFieldsOf<Timesync>(),
+    messageFieldsOf<DistanceSensor>(),     messageFieldsOf<Statustext>(),
+    messageFieldsOf<Odometry>(),           messageFieldsOf<WheelDistance>(),
+    messageFieldsOf<IrgsStereoSonar>(),    messageFieldsOf<IrgsEncoderTicks>(),
+    messageFieldsOf<IrgsContact>(),        messageFieldsOf<IrgsBehaviourStatus>(),
+    messageFieldsOf<IrgsSonarScan>(),      messageFieldsOf<IrgsPose2d>(),
 }};
 
 // Every generated message type, for code that handles all of them (tests, dispatch).

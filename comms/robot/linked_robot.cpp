@@ -109,7 +109,8 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
         robot_system(cfg.link.session.target_system),
         assembler(profile, cfg.telemetry),
         timer(io_thread.context()),
-        epoch(Clock::now()) {}
+        epoch(Clock::now()),
+        messages(cfg.messages) {}
 
   double now() const { return std::chrono::duration<double>(Clock::now() - epoch).count(); }
 
@@ -158,6 +159,10 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     }
     if (frame.system_id != robot_system)
       return;
+    if (messages.enabled()) {
+      const std::lock_guard lock(mutex);
+      messages.onFrame(frame, now());
+    }
     if (const auto value = frame.as<mav::ParamValue>()) {
       const std::lock_guard lock(mutex);
       params.onParamValue(*value, now());
@@ -171,9 +176,11 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
   }
 
   void onEvent(const LinkEvent& event) {
-    if (event.kind == LinkEventKind::kLinkUp)
-      assembler.reset();  // the robot may have restarted: new time base
     const std::lock_guard lock(mutex);
+    if (event.kind == LinkEventKind::kLinkUp) {
+      assembler.reset();  // the robot may have restarted: new time base
+      messages.reset();
+    }
     moveReadyLocked();
     pushEventLocked(event);
     if ((event.kind == LinkEventKind::kLinkLost || event.kind == LinkEventKind::kClosed) &&
@@ -241,6 +248,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
   VelocityCommand command;
   double next_teleop_s = 0.0;
   ParamClient params;
+  MessageSampler messages;
 };
 
 LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, RobotProfile profile,
@@ -392,6 +400,16 @@ std::vector<LinkEvent> LinkedRobot::takeEvents() {
 std::uint64_t LinkedRobot::droppedSamples() const {
   const std::lock_guard lock(state_->mutex);
   return state_->dropped_samples;
+}
+
+std::vector<MessageSample> LinkedRobot::takeMessages() {
+  const std::lock_guard lock(state_->mutex);
+  return state_->messages.take();
+}
+
+MessageSamplerCounters LinkedRobot::messageCounters() const {
+  const std::lock_guard lock(state_->mutex);
+  return state_->messages.counters();
 }
 
 void LinkedRobot::sendBehaviour(const RobotBehaviourCommand& command, CommandCallback done) {

@@ -33,6 +33,7 @@
 #include "comms/link/link.hpp"
 #include "comms/link/link_url.hpp"
 #include "comms/mavlink/messages.hpp"
+#include "comms/robot/message_sampler.hpp"
 #include "comms/robot/param_client.hpp"
 #include "comms/robot/telemetry_assembler.hpp"
 #include "core/robot/robot.hpp"
@@ -48,6 +49,8 @@ struct LinkedRobotConfig {
   TelemetryAssemblerConfig telemetry{};
   // Console events kept while nobody calls takeEvents(); older ones are dropped.
   std::size_t max_pending_events = 1000;
+  // Decoded messages for takeMessages() (the GUI's plots): off unless max_rate_hz > 0.
+  MessageSamplerConfig messages{};
 };
 
 // What a behaviour command asks of the firmware (dialect COMMAND_LONG ids 48100-48104).
@@ -99,6 +102,11 @@ class LinkedRobot final : public Robot {
   LinkStats linkStats() const;
   std::vector<LinkEvent> takeEvents();  // link events + STATUSTEXT, oldest first
   std::uint64_t droppedSamples() const;
+  // The robot's messages, every numeric field, thinned per stream (config.messages), oldest
+  // first; robot_time_s is the robot's boot clock, as TelemetrySample::time_s before update()
+  // hands it on. Empty when config.messages is off.
+  std::vector<MessageSample> takeMessages();
+  MessageSamplerCounters messageCounters() const;
   // Sends a behaviour command (acknowledged, retried); `done` runs on the io thread. Throws
   // std::invalid_argument for an invalid command (behaviourCommandLong) before sending anything.
   void sendBehaviour(const RobotBehaviourCommand& command, CommandCallback done = {});

@@ -20,6 +20,34 @@ QStringList keysOf(const QList<QTreeWidgetItem*>& items) {
   return keys;
 }
 
+// Text order with digit runs compared as numbers, so "range[2]" comes before "range[10]" and
+// "id 9" before "id 10" (zero-padded names such as "range 03" keep their order).
+int naturalCompare(const QString& a, const QString& b) {
+  qsizetype i = 0;
+  qsizetype j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (a[i].isDigit() && b[j].isDigit()) {
+      const qsizetype i0 = i;
+      const qsizetype j0 = j;
+      while (i < a.size() && a[i].isDigit())
+        ++i;
+      while (j < b.size() && b[j].isDigit())
+        ++j;
+      const qulonglong na = QStringView(a).mid(i0, i - i0).toULongLong();
+      const qulonglong nb = QStringView(b).mid(j0, j - j0).toULongLong();
+      if (na != nb)
+        return na < nb ? -1 : 1;
+      continue;
+    }
+    if (a[i] != b[j])
+      return a[i] < b[j] ? -1 : 1;
+    ++i;
+    ++j;
+  }
+  return a.size() - i == b.size() - j ? QString::compare(a, b)
+                                      : (a.size() - i < b.size() - j ? -1 : 1);
+}
+
 }  // namespace
 
 FieldBrowser::FieldBrowser(PlotDataHub& hub, QWidget* parent) : QTreeWidget(parent), hub_(hub) {
@@ -57,7 +85,7 @@ void FieldBrowser::addKey(const QString& key) {
         break;
       }
       // Kept sorted, so sonar 00..15 and the groups read in order.
-      if (insert_at == count && QString::compare(child->text(0), parts[i]) > 0)
+      if (insert_at == count && naturalCompare(child->text(0), parts[i]) > 0)
         insert_at = c;
     }
     if (found == nullptr) {
@@ -66,6 +94,8 @@ void FieldBrowser::addKey(const QString& key) {
         parent->insertChild(insert_at, found);
       else
         insertTopLevelItem(insert_at, found);
+      // The whole path on hover: deep names (MAVLink messages) may not fit the column.
+      found->setToolTip(0, parts.mid(0, i + 1).join(QLatin1Char('/')));
       if (leaf) {
         found->setData(0, kKeyRole, key);
         found->setText(1, hub_.unit(key));

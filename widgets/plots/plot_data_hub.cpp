@@ -9,11 +9,15 @@ PlotDataHub::PlotDataHub(std::size_t capacity_per_field, QObject* parent)
 
 PlotDataHub::~PlotDataHub() = default;
 
-void PlotDataHub::record(const QString& key, const QString& unit, double time_s, double value) {
+void PlotDataHub::record(const QString& key, const QString& unit, double time_s, double value,
+                         std::size_t capacity) {
   auto it = fields_.find(key);
   bool added = false;
   if (it == fields_.end()) {
-    it = fields_.emplace(key, std::make_unique<Field>(Field{unit, PlotSeries(capacity_)})).first;
+    it = fields_
+             .emplace(key, std::make_unique<Field>(
+                               Field{unit, PlotSeries(capacity > 0 ? capacity : capacity_)}))
+             .first;
     added = true;
   }
   if (it->second->series.append(time_s, value)) {

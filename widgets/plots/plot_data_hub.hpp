@@ -30,8 +30,10 @@ class PlotDataHub : public QObject {
                        QObject* parent = nullptr);
   ~PlotDataHub() override;
 
-  // Records one value (a new key is added and announced with fieldAdded()).
-  void record(const QString& key, const QString& unit, double time_s, double value);
+  // Records one value (a new key is added and announced with fieldAdded()). `capacity` is the
+  // new key's sample count (0: the hub's); an existing key keeps its own.
+  void record(const QString& key, const QString& unit, double time_s, double value,
+              std::size_t capacity = 0);
   void record(double time_s, const std::vector<PlotFieldValue>& values);
   // Drops every sample (keys stay, so panels keep their traces).
   void clearSamples();

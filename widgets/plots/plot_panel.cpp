@@ -53,9 +53,12 @@ QString formatValue(double v) {
   return QString::number(v, 'g', 4);
 }
 
+// The key without its source: "Odometry pose x", "DISTANCE_SENSOR id 0 current_distance".
 QString lastComponent(const QString& key) {
   const QStringList parts = key.split(QLatin1Char('/'));
-  return parts.size() >= 2 ? parts[parts.size() - 2] + QLatin1Char(' ') + parts.back() : key;
+  if (parts.size() >= 3)
+    return parts.mid(1).join(QLatin1Char(' '));
+  return parts.size() == 2 ? parts[0] + QLatin1Char(' ') + parts[1] : key;
 }
 
 // "Group name [unit]", or the whole key when another trace of the panel has the same short

@@ -6,7 +6,7 @@
 
 namespace irgs::widgets {
 
-PlotSeries::PlotSeries(std::size_t capacity) : buffer_(capacity) {
+PlotSeries::PlotSeries(std::size_t capacity) : capacity_(capacity) {
   if (capacity == 0)
     throw std::invalid_argument("PlotSeries: capacity must be positive");
 }
@@ -21,8 +21,10 @@ bool PlotSeries::append(double time_s, double value) {
     else if (time_s < newest_s)
       return false;
   }
-  if (size_ < buffer_.size()) {
-    buffer_[(head_ + size_) % buffer_.size()] = {time_s, value};
+  if (size_ < capacity_) {
+    if (buffer_.size() == buffer_.capacity())  // doubling, but never past the capacity
+      buffer_.reserve(std::min(capacity_, std::max<std::size_t>(64, 2 * buffer_.size())));
+    buffer_.push_back({time_s, value});
     ++size_;
   } else {
     buffer_[head_] = {time_s, value};
@@ -32,6 +34,7 @@ bool PlotSeries::append(double time_s, double value) {
 }
 
 void PlotSeries::clear() {
+  buffer_.clear();  // keeps the allocation
   head_ = 0;
   size_ = 0;
 }

@@ -48,7 +48,7 @@ class PlotSeries {
   void clear();
 
   std::size_t size() const { return size_; }
-  std::size_t capacity() const { return buffer_.size(); }
+  std::size_t capacity() const { return capacity_; }
   bool empty() const { return size_ == 0; }
   // i-th sample, oldest first (i < size()).
   const PlotSample& at(std::size_t i) const { return buffer_[(head_ + i) % buffer_.size()]; }
@@ -86,7 +86,10 @@ class PlotSeries {
   }
 
  private:
+  // Grows with the samples up to capacity_ (a field that stays short costs little), then is a
+  // ring: while not full, buffer_.size() == size_ and head_ == 0.
   std::vector<PlotSample> buffer_;
+  std::size_t capacity_;
   std::size_t head_ = 0;  // physical index of the oldest sample
   std::size_t size_ = 0;
 };

@@ -51,7 +51,7 @@ PlotsDock::PlotsDock(PlotDataHub& hub, QWidget* parent) : QWidget(parent), hub_(
   filter_->setPlaceholderText(tr("Filter fields"));
   filter_->setClearButtonEnabled(true);
   browser_ = new FieldBrowser(hub_, browser_side);
-  browser_->setColumnWidth(0, 170);
+  browser_->setColumnWidth(0, 215);  // MAVLink message names under two levels of indent
   browser_layout->addWidget(filter_);
   browser_layout->addWidget(browser_);
   connect(filter_, &QLineEdit::textChanged, browser_, &FieldBrowser::setFilter);
@@ -91,7 +91,7 @@ PlotsDock::PlotsDock(PlotDataHub& hub, QWidget* parent) : QWidget(parent), hub_(
   split->addWidget(plots_side);
   split->setStretchFactor(0, 0);
   split->setStretchFactor(1, 1);
-  split->setSizes({260, 700});
+  split->setSizes({300, 700});
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(2, 2, 2, 2);
   layout->addWidget(split);

@@ -174,6 +174,54 @@ TEST(LinkedRobot, StreamsTheFirmwareOdometryAtTwentyHertzWithSonarFromTheRightSe
   EXPECT_EQ(robot->droppedSamples(), 0u);
 }
 
+TEST(LinkedRobot, HandsOnEveryFieldOfTheRobotsMessagesWhenAskedTo) {
+  FirmwarePtyServer server(testing::makeFirmware({}, true), {});
+  IoThread io;
+  LinkedRobotConfig config = fastConfig();
+  config.messages.max_rate_hz = 25.0;
+  auto robot = openRobot(io, server.url(), config);
+  Drain drain(*robot);
+  std::vector<MessageSample> messages;
+  std::set<std::uint32_t> sonars;
+  ASSERT_TRUE(drain.until([&] {
+    for (auto& m : robot->takeMessages())
+      messages.push_back(std::move(m));
+    sonars.clear();
+    for (const MessageSample& m : messages) {
+      if (m.message->name == "DISTANCE_SENSOR")
+        sonars.insert(*m.instance);
+    }
+    return messages.size() > 200 && sonars.size() == testing::thesisRobot().sonars.size();
+  })) << messages.size()
+      << " messages, " << sonars.size() << " sonars";
+  // LOCAL_POSITION_NED x is the firmware's odometry x at the message's own time stamp.
+  std::size_t compared = 0;
+  for (const MessageSample& m : messages) {
+    ASSERT_EQ(m.values.size(), m.message->fields.size());
+    if (m.message->name != "LOCAL_POSITION_NED")
+      continue;
+    ASSERT_EQ(m.message->fields[1].name, "x");
+    const auto ms = std::llround(m.robot_time_s * 1000.0);
+    EXPECT_EQ(static_cast<double>(ms), m.values[0]);  // time_boot_ms
+    if (const auto truth = server.odometryAt(ms)) {
+      EXPECT_NEAR(m.values[1], truth->x, 2e-6);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 5u);
+  EXPECT_EQ(robot->messageCounters().dropped, 0u);
+}
+
+TEST(LinkedRobot, HandsOnNoMessagesByDefault) {
+  FirmwarePtyServer server(testing::makeFirmware({}, true), {});
+  IoThread io;
+  auto robot = openRobot(io, server.url());
+  Drain drain(*robot);
+  ASSERT_TRUE(drain.until([&] { return drain.samples.size() > 10; }));
+  EXPECT_TRUE(robot->takeMessages().empty());
+  EXPECT_EQ(robot->messageCounters().kept, 0u);
+}
+
 TEST(LinkedRobot, StopBrakesTheRobotAndReportsTheAcknowledgedStop) {
   FirmwarePtyServer server(testing::makeFirmware({}, true), {});
   IoThread io;

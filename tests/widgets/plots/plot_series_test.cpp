@@ -20,6 +20,30 @@ TEST(PlotSeries, KeepsTheNewestSamplesWhenFull) {
   EXPECT_DOUBLE_EQ(s.at(1).value, 7.0);
 }
 
+TEST(PlotSeries, GrowsWithItsSamplesUpToTheCapacityAndWrapsAfterAClear) {
+  PlotSeries s(1000);
+  EXPECT_EQ(s.capacity(), 1000u);
+  for (int i = 0; i < 2500; ++i)
+    ASSERT_TRUE(s.append(i * 0.01, i));
+  ASSERT_EQ(s.size(), 1000u);
+  EXPECT_DOUBLE_EQ(s.oldest().value, 1500.0);
+  EXPECT_DOUBLE_EQ(s.newest().value, 2499.0);
+  std::size_t n = 0;
+  double expected = 1500.0;
+  s.forEach(0, s.size(), [&](const PlotSample& p) {
+    EXPECT_DOUBLE_EQ(p.value, expected++);
+    ++n;
+  });
+  EXPECT_EQ(n, 1000u);
+  s.clear();
+  for (int i = 0; i < 1003; ++i)
+    ASSERT_TRUE(s.append(100.0 + i * 0.01, -i));
+  ASSERT_EQ(s.size(), 1000u);
+  EXPECT_DOUBLE_EQ(s.oldest().value, -3.0);
+  EXPECT_DOUBLE_EQ(s.at(500).value, -503.0);
+  EXPECT_DOUBLE_EQ(s.newest().value, -1002.0);
+}
+
 TEST(PlotSeries, DropsNonFiniteAndOutOfOrderSamplesAndRestartsOnALargeStepBack) {
   PlotSeries s(16);
   EXPECT_TRUE(s.append(5.0, 1.0));

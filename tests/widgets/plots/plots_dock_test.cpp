@@ -109,6 +109,29 @@ TEST(PlotsDock, BrowserShowsATreeBySourceAndDragsTheSelectedKeys) {
   EXPECT_FALSE(theta->isHidden());
 }
 
+TEST(PlotsDock, BrowserOrdersNumbersByValueAndShowsThePathOnHover) {
+  PlotDataHub hub;
+  PlotsDock dock(hub);
+  for (const char* key : {"MAVLink/IRGS_SONAR_SCAN/range[10]", "MAVLink/IRGS_SONAR_SCAN/range[2]",
+                          "MAVLink/IRGS_SONAR_SCAN/count", "MAVLink/DISTANCE_SENSOR/id 10/x",
+                          "MAVLink/DISTANCE_SENSOR/id 9/x"})
+    hub.record(QString::fromLatin1(key), QStringLiteral("mm"), 1.0, 1.0);
+  FieldBrowser& browser = dock.browser();
+  QTreeWidgetItem* scan =
+      browser.itemFor(QStringLiteral("MAVLink/IRGS_SONAR_SCAN/count"))->parent();
+  ASSERT_EQ(scan->childCount(), 3);
+  EXPECT_EQ(scan->child(0)->text(0), QStringLiteral("count"));
+  EXPECT_EQ(scan->child(1)->text(0), QStringLiteral("range[2]"));
+  EXPECT_EQ(scan->child(2)->text(0), QStringLiteral("range[10]"));
+  QTreeWidgetItem* sonars =
+      browser.itemFor(QStringLiteral("MAVLink/DISTANCE_SENSOR/id 9/x"))->parent()->parent();
+  EXPECT_EQ(sonars->child(0)->text(0), QStringLiteral("id 9"));
+  EXPECT_EQ(sonars->child(1)->text(0), QStringLiteral("id 10"));
+  EXPECT_EQ(sonars->child(1)->toolTip(0), QStringLiteral("MAVLink/DISTANCE_SENSOR/id 10"));
+  // Messages sort before "range" under MAVLink as plain text does.
+  EXPECT_EQ(browser.topLevelItem(0)->child(0)->text(0), QStringLiteral("DISTANCE_SENSOR"));
+}
+
 TEST(PlotsDock, DoubleClickPlotsInTheCurrentPanel) {
   PlotDataHub hub;
   PlotsDock dock(hub);
