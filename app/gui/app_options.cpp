@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "comms/link/link_url.hpp"
+#include "core/estimation/estimator_runner.hpp"
 
 namespace irgs::gui {
 namespace {
@@ -101,7 +102,8 @@ AppOptionsResult parseAppOptions(const QStringList& arguments) {
   const QCommandLineOption localize_option(
       QStringLiteral("localize"),
       QStringLiteral("Start localization with this estimator: ekf (stereo-sonar EKF), dr (dead "
-                     "reckoning) or encoder-gyro (the Localization menu does the same)."),
+                     "reckoning), encoder-gyro, mouse (optical-mouse odometry) or ekf-caster "
+                     "(the EKF on the three-caster robot; the Localization menu does the same)."),
       QStringLiteral("ESTIMATOR"));
   const QCommandLineOption record_option(
       QStringLiteral("record"),
@@ -210,10 +212,10 @@ AppOptionsResult parseAppOptions(const QStringList& arguments) {
   options.control_stdin = parser.isSet(control_option);
   if (parser.isSet(localize_option)) {
     options.localize = parser.value(localize_option);
-    if (options.localize != QLatin1String("ekf") && options.localize != QLatin1String("dr") &&
-        options.localize != QLatin1String("encoder-gyro"))
-      return fail(QStringLiteral("--localize expects ekf, dr or encoder-gyro, got '%1'")
-                      .arg(options.localize));
+    if (!parseEstimatorKind(options.localize.toStdString()))
+      return fail(
+          QStringLiteral("--localize expects ekf, dr, encoder-gyro, mouse or ekf-caster, got '%1'")
+              .arg(options.localize));
   }
   if (parser.isSet(status_option)) {
     options.status_interval_s = parseNonNegative(parser.value(status_option));

@@ -195,6 +195,7 @@ void LocalizationController::restart() {
   warned_no_truth_ = false;
   warned_no_gyro_ = false;
   warned_no_mouse_ = false;
+  warned_no_casters_ = false;
   plots_->clear();
   if (kind_) {
     EstimatorRunnerConfig config;
@@ -265,6 +266,12 @@ void LocalizationController::onSample(const TelemetrySample& sample) {
                     tr("Localization: this robot has no gyro — the encoder + gyro filter runs "
                        "on the encoders alone (irgs-sim --localize encoder-gyro simulates one)"));
   }
+  if (!sample.casters && *kind_ == EstimatorKind::kStereoEkfCaster && !warned_no_casters_) {
+    warned_no_casters_ = true;
+    session_.report(EventLevel::kWarning,
+                    tr("Localization: this robot reports no caster encoders — the three-caster "
+                       "EKF holds its estimate between sonar updates"));
+  }
   if (!sample.mouse && *kind_ == EstimatorKind::kMouseOdometry && !warned_no_mouse_) {
     warned_no_mouse_ = true;
     session_.report(EventLevel::kWarning,
@@ -305,10 +312,11 @@ void LocalizationController::updateOverlay() {
       overlay.poses.push_back({tr("true"), kTruthColour, *step.truth, std::nullopt});
     if (*kind_ != EstimatorKind::kDeadReckoning)
       overlay.poses.push_back({tr("DR"), kDeadReckoningColour, step.dead_reckoning, std::nullopt});
-    const QString label = *kind_ == EstimatorKind::kStereoEkf       ? tr("EKF")
-                          : *kind_ == EstimatorKind::kEncoderGyro   ? tr("enc+gyro")
-                          : *kind_ == EstimatorKind::kMouseOdometry ? tr("mouse")
-                                                                    : tr("DR");
+    const QString label = *kind_ == EstimatorKind::kStereoEkf         ? tr("EKF")
+                          : *kind_ == EstimatorKind::kStereoEkfCaster ? tr("EKF (J+)")
+                          : *kind_ == EstimatorKind::kEncoderGyro     ? tr("enc+gyro")
+                          : *kind_ == EstimatorKind::kMouseOdometry   ? tr("mouse")
+                                                                      : tr("DR");
     overlay.poses.push_back(
         {label, *kind_ == EstimatorKind::kDeadReckoning ? kDeadReckoningColour : kEstimateColour,
          step.estimate, Eigen::Matrix3d(step.covariance)});
@@ -355,8 +363,8 @@ void LocalizationController::stepUpdate() {
     const EstimatorStep& step = runner_->lastStep();
     if (step.index == before)
       continue;
-    if (*kind_ != EstimatorKind::kStereoEkf || !step.readings.empty()) {
-      if (*kind_ != EstimatorKind::kStereoEkf)
+    if (!usesStereo(*kind_) || !step.readings.empty()) {
+      if (!usesStereo(*kind_))
         printStep(step);
       break;
     }
@@ -382,6 +390,13 @@ void LocalizationController::printStep(const EstimatorStep& step) {
   } else if (step.readings.empty()) {
     session_.report(EventLevel::kSensor, tr("DR step to %1").arg(formatPose(step.estimate)));
   }
+  if (step.caster_periods > 0)
+    session_.report(EventLevel::kSensor,
+                    tr("caster J+ prediction: %1 periods, mean residual ‖e‖ = %2 mrad, Q = λ‖e‖ "
+                       "with λ = %3")
+                        .arg(step.caster_periods)
+                        .arg(1000.0 * step.caster_residual_sum / step.caster_periods, 0, 'f', 3)
+                        .arg(runner_->config().caster_lambda, 0, 'g', 4));
   for (const StereoReadingRecord& r : step.readings) {
     QString text = tr("%1 sensor: ").arg(QString::fromLatin1(sensorName(r.sensor)));
     if (r.echo != EchoStatus::kEcho) {

@@ -105,6 +105,7 @@ class LocalizationController : public QObject {
   bool warned_no_truth_ = false;
   bool warned_no_gyro_ = false;
   bool warned_no_mouse_ = false;
+  bool warned_no_casters_ = false;
   bool stepping_ = false;
   bool drag_armed_ = false;
   std::optional<Vec2> drag_from_;

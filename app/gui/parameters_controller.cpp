@@ -75,6 +75,11 @@ std::vector<ParameterSpec> localizationSpecs() {
       {QStringLiteral("ekf/stereo_period_s"), QObject::tr("Stereo firing period"),
        QStringLiteral("s"), 0.01, 2.0, runner.stereo_period_s, runner.stereo_period_s, 3, false,
        QObject::tr("Each stereo sensor fires once per period (000: 40 ms)")},
+      {QStringLiteral("ekf/caster_lambda"), QObject::tr("Caster process noise λ"), QString(), 0.0,
+       100.0, runner.caster_lambda, runner.caster_lambda, 4, false,
+       QObject::tr("Paper 000, (36): the three-caster EKF's process noise Q = λ‖e‖ I6 per 1 ms "
+                   "period, e the least-squares residual of the six caster encoders (000: "
+                   "0.005)")},
   };
 }
 
@@ -303,6 +308,7 @@ void ParametersController::applyLocalization() {
   const double sigma_theta = degToRad(get("ekf/sigma_theta_deg"));
   const double wheel = get("ekf/wheel_variance_per_m");
   const double period = get("ekf/stereo_period_s");
+  const double lambda = get("ekf/caster_lambda");
   localization_.setConfigAdjuster([=](EstimatorRunnerConfig& c) {
     c.ekf.eps1_m = eps1;
     c.ekf.eps2_rad = eps2;
@@ -312,6 +318,7 @@ void ParametersController::applyLocalization() {
     c.ekf.r_theta_rad2 = sigma_theta * sigma_theta;
     c.process.wheel_variance_per_m = wheel;
     c.stereo_period_s = period;
+    c.caster_lambda = lambda;
   });
 }
 

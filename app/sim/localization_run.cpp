@@ -145,12 +145,17 @@ std::string localizationMetricsJson(const LocalizationRunSpec& spec, const Local
                {"fraction_within_95", m.nees_within_95},
                {"bound_95_3dof", kChi2Dof3P95}};
   j["measurements"] = {{"kind", spec.kind == EstimatorKind::kEncoderGyro     ? "gyro heading"
-                                : spec.kind == EstimatorKind::kStereoEkf     ? "stereo echoes"
+                                : usesStereo(spec.kind)                      ? "stereo echoes"
                                 : spec.kind == EstimatorKind::kMouseOdometry ? "floor-sensor counts"
                                                                              : "none"},
                        {"received", m.readings},
                        {"accepted", m.accepted},
                        {"accepted_fraction", m.acceptedFraction()}};
+  if (spec.kind == EstimatorKind::kStereoEkfCaster)
+    j["caster"] = {{"lambda", spec.estimator.caster_lambda},
+                   {"period_s", spec.estimator.caster_period_s},
+                   {"periods", m.caster_periods},
+                   {"mean_residual_rad", m.mean_caster_residual_rad}};
   j["units"] = "metres, degrees (headings), seconds";
   return j.dump(2) + "\n";
 }
@@ -192,6 +197,13 @@ LocalizationRunOutcome runLocalizationMode(const SimOptions& options, const Worl
   spec.sim = options.ideal ? idealSimConfig(spec.sim) : typicalSimConfig(spec.sim);
   spec.sim.seed = options.seed;
   spec.estimator.seed = options.seed;
+  if (options.caster_lambda)
+    spec.estimator.caster_lambda = *options.caster_lambda;
+  // The three-caster EKF predicts every dead-reckoning period of 000 (1 ms) from that period's
+  // encoder increments: step the simulator at that period so it sees each one (a coarser step
+  // averages the wheels' random slip and hides it from the adaptive noise lambda ||e||).
+  if (spec.kind == EstimatorKind::kStereoEkfCaster)
+    spec.sim.dt_s = spec.estimator.caster_period_s;
   if (options.duration_s)
     spec.duration_s = *options.duration_s;
   if (!options.script.empty()) {

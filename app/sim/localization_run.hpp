@@ -1,8 +1,8 @@
 #pragma once
-// irgs-sim --localize ekf|dr|encoder-gyro: one localization experiment, headless. The simulated
-// robot drives a route (the map's route graph, node by node and back to the first; or a timed
-// drive script) while an EstimatorRunner (core/estimation/estimator_runner.hpp) estimates its
-// pose; writes the metrics (RMS and final errors, NEES, accepted fraction) as JSON and the time
+// irgs-sim --localize ekf|dr|encoder-gyro|mouse|ekf-caster: one localization experiment, headless.
+// The simulated robot drives a route (the map's route graph, node by node and back to the first; or
+// a timed drive script) while an EstimatorRunner (core/estimation/estimator_runner.hpp) estimates
+// its pose; writes the metrics (RMS and final errors, NEES, accepted fraction) as JSON and the time
 // series as CSV. The route is driven on the TRUE pose, so every estimator sees the same motion
 // and a diverging one cannot steer the robot into a wall.
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/estimation/estimator_runner.hpp"
+
 namespace irgs::app {
 namespace {
 
@@ -95,12 +97,16 @@ live sonar grid is built, then writes the results.
                     000 on the map's walls, corners and edges), dr (encoder dead reckoning) or
                     encoder-gyro (paper 001 feedback filter, AUTOGYRO-level gyro) or mouse
                     (paper 004 two-sensor optical-mouse odometry; needs a robot with
-                    drive/mouse_sensors, e.g. --robot resources/robots/mouse_type20_004.json).
-                    The robot
+                    drive/mouse_sensors, e.g. --robot resources/robots/mouse_type20_004.json)
+                    or ekf-caster (the 000 EKF on its three-caster robot: least-squares J+
+                    odometry from the six caster encoders with adaptive process noise
+                    lambda ||e||; needs --robot resources/robots/caster3_000.json). The robot
                     drives the map's route graph (nodes in order, back to the first) at
                     0.3 m/s, or --route, or --script. Writes localization_metrics.json (RMS, max and final
                     errors of the estimate and of dead reckoning, NEES, accepted measurements)
                     and localization.csv (truth, estimate, DR, errors, 1-sigma, NEES per 0.1 s)
+  --caster-lambda L with --localize ekf-caster: the adaptive process-noise scale lambda of
+                    Q = lambda ||e|| I6 (default 0.005, paper 000)
   --help            this text
 
 Outputs: grid.pgm + grid.yaml (ROS map_server), grid.png (grid with the true path in blue and
@@ -176,9 +182,15 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
         return fail("--observer wants ideal or vision, got '" + value + "'");
       options.observer = value;
     } else if (arg == "--localize") {
-      if (value != "ekf" && value != "dr" && value != "encoder-gyro" && value != "mouse")
-        return fail("--localize wants ekf, dr, encoder-gyro or mouse, got '" + value + "'");
+      if (!parseEstimatorKind(value))
+        return fail("--localize wants ekf, dr, encoder-gyro, mouse or ekf-caster, got '" + value +
+                    "'");
       options.localize = value;
+    } else if (arg == "--caster-lambda") {
+      const auto l = parseDouble(value);
+      if (!l || *l < 0.0 || *l > 1e6)
+        return fail("--caster-lambda wants a number >= 0 (paper 000: 0.005), got '" + value + "'");
+      options.caster_lambda = *l;
     } else if (arg == "--route") {
       std::string list = value;  // ';' or '/' between points ('/' needs no shell quoting)
       std::replace(list.begin(), list.end(), '/', ';');
@@ -248,6 +260,8 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
     return fail(
         "--localize runs its own route in the simulator; it cannot be combined with "
         "--connect or --behaviour");
+  if (options.caster_lambda && options.localize != "ekf-caster")
+    return fail("--caster-lambda is only used with --localize ekf-caster");
   if (!options.route.empty() && options.localize.empty())
     return fail("--route is only used with --localize");
   if (!options.route.empty() && !options.script.empty())

@@ -35,8 +35,10 @@ struct SimOptions {
   // --compare FILE: a map saved by an earlier run (grid.yaml); mapbuild scores its built map
   // against it too (map_agreement in metrics.json, app/sim/map_compare.hpp).
   std::filesystem::path compare;
-  // --localize ekf|dr|encoder-gyro: a localization experiment (app/sim/localization_run.hpp).
+  // --localize ekf|dr|encoder-gyro|mouse|ekf-caster: a localization experiment
+  // (app/sim/localization_run.hpp).
   std::string localize;
+  std::optional<double> caster_lambda;  // --caster-lambda: Q = lambda ||e|| (ekf-caster)
   // --behaviour deliver: landmark navigation of 002_… on the map's topological graph from node
   // --from to node --to (app/sim/delivery_run.hpp); --observer says what sees the ceiling.
   std::string from_node;

@@ -63,4 +63,32 @@ CasterOdometry casterOdometry(const CasterDriveGeometry& geometry,
   return out;
 }
 
+std::array<double, 3> casterSteering(const CasterEncoders& encoders, double ticks_per_rad) {
+  std::array<double, 3> out{};
+  for (std::size_t i = 0; i < 3; ++i)
+    out[i] = static_cast<double>(encoders.steering_ticks[i]) / ticks_per_rad;
+  return out;
+}
+
+CasterOdometry casterIntervalOdometry(const CasterDriveGeometry& geometry,
+                                      const CasterEncoders& from, const CasterEncoders& to,
+                                      double ticks_per_rad, int k, int periods) {
+  if (!(ticks_per_rad > 0.0) || !std::isfinite(ticks_per_rad) || periods < 1 || k < 0 ||
+      k >= periods)
+    return {};
+  const double n = static_cast<double>(periods);
+  const double mid = (static_cast<double>(k) + 0.5) / n;  // fraction of the interval
+  std::array<double, 3> steering{};
+  CasterVector delta;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double s0 = static_cast<double>(from.steering_ticks[i]);
+    const double s1 = static_cast<double>(to.steering_ticks[i]);
+    steering[i] = (s0 + mid * (s1 - s0)) / ticks_per_rad;
+    const auto row = static_cast<Eigen::Index>(2 * i);
+    delta(row) = static_cast<double>(to.drive_ticks[i] - from.drive_ticks[i]) / (n * ticks_per_rad);
+    delta(row + 1) = (s1 - s0) / (n * ticks_per_rad);
+  }
+  return casterOdometry(geometry, steering, delta);
+}
+
 }  // namespace irgs

@@ -8,6 +8,7 @@
 #include <array>
 
 #include "core/estimation/localization_types.hpp"
+#include "core/robot/caster_encoders.hpp"
 
 namespace irgs {
 
@@ -48,5 +49,16 @@ struct CasterOdometry {
 CasterOdometry casterOdometry(const CasterDriveGeometry& geometry,
                               const std::array<double, 3>& steering_rad,
                               const CasterVector& delta_theta);
+
+// The steering angles (rad) the encoders report: counts / ticks_per_rad.
+std::array<double, 3> casterSteering(const CasterEncoders& encoders, double ticks_per_rad);
+
+// J+ odometry of period k (0-based) of `periods` equal periods between the encoder readings
+// `from` and `to`, assuming constant encoder rates in between: DeltaTheta = (to - from) /
+// periods, evaluated at the steering interpolated to the middle of the period (second-order
+// accurate while the casters swivel). periods = 1: one step from the mid steering.
+CasterOdometry casterIntervalOdometry(const CasterDriveGeometry& geometry,
+                                      const CasterEncoders& from, const CasterEncoders& to,
+                                      double ticks_per_rad, int k = 0, int periods = 1);
 
 }  // namespace irgs

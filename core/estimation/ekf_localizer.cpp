@@ -150,7 +150,13 @@ CasterPrediction EkfLocalizer::predictCaster(const CasterDriveGeometry& geometry
     if (!std::isfinite(a))
       return out;
   }
-  const CasterOdometry odo = casterOdometry(geometry, steering_rad, delta_theta);
+  return predictCaster(casterOdometry(geometry, steering_rad, delta_theta), lambda);
+}
+
+CasterPrediction EkfLocalizer::predictCaster(const CasterOdometry& odo, double lambda) {
+  CasterPrediction out;
+  if (!std::isfinite(lambda) || !(lambda >= 0.0))
+    return out;
   if (!odo.ok) {
     out.status = PredictStatus::kRejectedCasterSingular;
     return out;

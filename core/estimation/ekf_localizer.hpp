@@ -109,6 +109,9 @@ class EkfLocalizer {
   CasterPrediction predictCaster(const CasterDriveGeometry& geometry,
                                  const std::array<double, 3>& steering_rad,
                                  const CasterVector& delta_theta, double lambda = 0.005);
+  // Same from an already computed least-squares odometry (e.g. casterIntervalOdometry):
+  // U += R(Phi) body_delta, P += lambda ||e|| R G+ G+' R'. Rejected when !odometry.ok.
+  CasterPrediction predictCaster(const CasterOdometry& odometry, double lambda);
 
   // One stereo reading (path lengths r1 to R1, r2 to R2): invert (5)-(8), match, update.
   LocalizationUpdate update(const EchoPaths& reading, const StereoSensor& sensor,

@@ -6,14 +6,17 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/estimation/caster_profile.hpp"
 #include "core/estimation/stereo_measurement_model.hpp"
 #include "core/sim/diff_drive.hpp"
 
 namespace irgs {
 namespace {
 
-// SimRandom purpose of the runner's echo stream (distinct from the simulator's 1..4).
+// SimRandom purpose of the runner's echo stream (distinct from the simulator's 1..6).
 constexpr std::uint64_t kEchoStream = 0x5E0E;
+// More J+ periods than this between two samples (10 s at 1 ms) are predicted as this many.
+constexpr int kMaxCasterPeriods = 10000;
 
 void require(bool ok, const std::string& what) {
   if (!ok)
@@ -49,6 +52,8 @@ const char* toString(EstimatorKind kind) {
       return "encoder-gyro";
     case EstimatorKind::kMouseOdometry:
       return "mouse";
+    case EstimatorKind::kStereoEkfCaster:
+      return "ekf-caster";
   }
   return "?";
 }
@@ -70,8 +75,14 @@ const char* displayName(EstimatorKind kind) {
       return "Encoder + gyro filter (001)";
     case EstimatorKind::kMouseOdometry:
       return "Optical-mouse odometry (004)";
+    case EstimatorKind::kStereoEkfCaster:
+      return "Stereo-sonar EKF, three-caster J+ (000)";
   }
   return "?";
+}
+
+bool usesStereo(EstimatorKind kind) {
+  return kind == EstimatorKind::kStereoEkf || kind == EstimatorKind::kStereoEkfCaster;
 }
 
 std::vector<StereoSensor> defaultStereoSensors() {
@@ -101,8 +112,13 @@ void validate(const EstimatorRunnerConfig& c) {
           "stereo_period_s must be finite and > 0");
   require(std::isfinite(c.max_step_travel_m) && c.max_step_travel_m > 0.0,
           "max_step_travel_m must be finite and > 0");
-  require(!c.sensors.empty() || c.kind != EstimatorKind::kStereoEkf,
-          "the stereo EKF needs at least one sensor");
+  require(!c.sensors.empty() || !usesStereo(c.kind), "the stereo EKF needs at least one sensor");
+  require(std::isfinite(c.caster_lambda) && c.caster_lambda >= 0.0,
+          "caster_lambda must be finite and >= 0");
+  require(std::isfinite(c.caster_period_s) && c.caster_period_s > 0.0,
+          "caster_period_s must be finite and > 0");
+  if (c.caster_geometry)
+    validate(*c.caster_geometry);
   for (const StereoSensor& s : c.sensors)
     require(std::isfinite(s.mount.x_m) && std::isfinite(s.mount.y_m) &&
                 std::isfinite(s.mount.phi_rad) && std::isfinite(s.half_baseline_m) &&
@@ -120,6 +136,8 @@ EstimatorRunner::EstimatorRunner(const WorldMap& map, const RobotProfile& profil
       metres_per_tick_(profile.drive.metresPerTick()),
       wheelbase_m_(profile.drive.wheelbase_m),
       ekf_(LocState::Zero(), initialCovariance(config_), config_.ekf),
+      caster_ticks_per_rad_(profile.drive.ticksPerWheelRad()),
+      caster_dr_(LocState::Zero(), initialCovariance(config_), config_.ekf),
       echo_rng_(SimRandom::stream(config_.seed, kEchoStream)) {
   require(std::isfinite(metres_per_tick_) && metres_per_tick_ > 0.0,
           "the profile's metres per tick must be finite and > 0");
@@ -143,6 +161,25 @@ EstimatorRunner::EstimatorRunner(const WorldMap& map, const RobotProfile& profil
     }
     validate(*config_.mouse_rig);
   }
+  const bool caster_robot = profile.drive.type == DriveType::kThreeCaster;
+  if (config_.kind == EstimatorKind::kStereoEkfCaster) {
+    if (!config_.caster_geometry) {
+      const CasterGeometryResult g = casterGeometryFromProfile(profile);
+      require(g.geometry.has_value(),
+              "the three-caster EKF needs a profile with drive type \"three_caster\" (" +
+                  (g.diagnostics.empty()
+                       ? std::string("no geometry")
+                       : g.diagnostics.front().field + ": " + g.diagnostics.front().message) +
+                  "), e.g. resources/robots/caster3_000.json");
+      config_.caster_geometry = g.geometry;
+    }
+    require(std::isfinite(caster_ticks_per_rad_) && caster_ticks_per_rad_ > 0.0,
+            "the profile's encoder counts per radian must be finite and > 0");
+  } else if (caster_robot && config_.kind != EstimatorKind::kMouseOdometry) {
+    require(false, std::string("'") + toString(config_.kind) +
+                       "' needs left/right wheel encoders; this is a three-caster robot (drive "
+                       "type \"three_caster\"): use 'ekf-caster'");
+  }
   reset(initial_estimate);
 }
 
@@ -150,6 +187,9 @@ void EstimatorRunner::reset(const Pose2& initial_estimate) {
   require(finitePose(initial_estimate), "non-finite initial pose");
   initial_ = {initial_estimate.x, initial_estimate.y, wrapAngle(initial_estimate.theta)};
   ekf_.reset(toLocState(initial_), initialCovariance(config_));
+  caster_dr_.reset(toLocState(initial_), initialCovariance(config_));
+  last_casters_.reset();
+  caster_residual_total_ = 0.0;
   encoder_gyro_.reset();
   if (config_.kind == EstimatorKind::kEncoderGyro)
     encoder_gyro_.emplace(filterConfig(config_, wheelbase_m_), initial_);
@@ -194,6 +234,12 @@ const EstimatorStep& EstimatorRunner::feed(const TelemetrySample& sample) {
   } else if (std::abs(d_left) > config_.max_step_travel_m ||
              std::abs(d_right) > config_.max_step_travel_m) {
     step_.note = "encoder jump between samples: new baseline (robot replaced?)";
+  } else if (isCasterKind() && sample.casters && last_casters_ &&
+             casterJump(*last_casters_, *sample.casters)) {
+    step_.note = "caster encoder jump between samples: new baseline (robot replaced?)";
+  } else if (dt > 0.0 && config_.kind == EstimatorKind::kStereoEkfCaster) {
+    step_.predicted = true;
+    predictFromCasters(sample, dt);
   } else if (dt > 0.0) {
     step_.predicted = true;
     step_.dead_reckoning =
@@ -219,12 +265,13 @@ const EstimatorStep& EstimatorRunner::feed(const TelemetrySample& sample) {
   has_baseline_ = true;
   if (sample.mouse)
     last_mouse_ = sample.mouse;
+  if (sample.casters)
+    last_casters_ = sample.casters;
   last_left_ = sample.left_ticks;
   last_right_ = sample.right_ticks;
   last_time_s_ = sample.time_s;
 
-  if (config_.kind == EstimatorKind::kStereoEkf && step_.truth &&
-      sample.time_s + 1e-9 >= next_echo_s_) {
+  if (usesStereo(config_.kind) && step_.truth && sample.time_s + 1e-9 >= next_echo_s_) {
     fireStereo(*step_.truth);
     // A late sample (paused, or coarser than the period) does not trigger a burst of catch-up
     // readings: the next firing is one period after this one.
@@ -258,6 +305,50 @@ void EstimatorRunner::predictFromMice(const TelemetrySample& sample) {
   const double travel = std::copysign(motion.centre.norm(), motion.centre.x());
   const double half_turn = 0.5 * motion.dtheta_rad * wheelbase_m_;
   ekf_.predictDiffDrive(travel - half_turn, travel + half_turn, wheelbase_m_, config_.process);
+}
+
+bool EstimatorRunner::casterJump(const CasterEncoders& before, const CasterEncoders& now) const {
+  const double r = config_.caster_geometry ? config_.caster_geometry->wheel_radius_m : 0.0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double travel =
+        static_cast<double>(now.drive_ticks[i] - before.drive_ticks[i]) / caster_ticks_per_rad_;
+    if (std::abs(travel * r) > config_.max_step_travel_m)
+      return true;
+  }
+  return false;
+}
+
+void EstimatorRunner::predictFromCasters(const TelemetrySample& sample, double dt) {
+  step_.dead_reckoning = caster_dr_.pose();
+  if (!sample.casters) {
+    step_.note = "no caster encoders: the estimate holds";
+    return;
+  }
+  const CasterEncoders before = last_casters_.value_or(*sample.casters);
+  const int periods = static_cast<int>(std::clamp(std::ceil(dt / config_.caster_period_s - 1e-9),
+                                                  1.0, static_cast<double>(kMaxCasterPeriods)));
+  int singular = 0;
+  for (int k = 0; k < periods; ++k) {
+    const CasterOdometry odo = casterIntervalOdometry(
+        *config_.caster_geometry, before, *sample.casters, caster_ticks_per_rad_, k, periods);
+    const CasterPrediction p = ekf_.predictCaster(odo, config_.caster_lambda);
+    if (p.status != PredictStatus::kApplied) {
+      ++singular;
+      continue;
+    }
+    caster_dr_.predictCaster(odo, config_.caster_lambda);
+    ++step_.caster_periods;
+    step_.caster_residual_sum += p.residual_norm;
+  }
+  if (singular > 0)
+    step_.note = "caster steering makes J+ singular: " + std::to_string(singular) + " of " +
+                 std::to_string(periods) + " periods skipped";
+  metrics_.caster_periods += step_.caster_periods;
+  caster_residual_total_ += step_.caster_residual_sum;
+  if (metrics_.caster_periods > 0)
+    metrics_.mean_caster_residual_rad =
+        caster_residual_total_ / static_cast<double>(metrics_.caster_periods);
+  step_.dead_reckoning = caster_dr_.pose();
 }
 
 void EstimatorRunner::fireStereo(const Pose2& truth) {

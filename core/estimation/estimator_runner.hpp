@@ -13,6 +13,13 @@
 //   * kMouseOdometry: the paper-004 two-sensor optical-mouse odometry (mouse_odometry.hpp) on the
 //     sample's floor-sensor counts, the rig from the profile's drive/mouse_sensors; its
 //     covariance is the encoder DR noise model applied to the same motion (004 gives none).
+//   * kStereoEkfCaster: the paper-000 EKF on its own robot (drive type "three_caster"):
+//     predicted with the least-squares J+ odometry (33) from the sample's six caster encoders,
+//     with the adaptive process noise Q = caster_lambda ||e|| (36)-(37), in dead-reckoning
+//     periods of caster_period_s [000: 1 ms] (the interval between two samples is split into
+//     equal periods, encoder rates constant in between); updated like kStereoEkf. Its dead
+//     reckoning is the same J+ prediction without updates. The wheel-encoder kinds refuse a
+//     three-caster profile (it has no left/right wheels) and this one refuses any other.
 //
 // Every sample is used once, in order: the encoder increment is the tick difference to the
 // previous sample times the profile's metres per tick (nominal model, like the robot's own
@@ -39,12 +46,21 @@
 
 namespace irgs {
 
-enum class EstimatorKind { kDeadReckoning, kStereoEkf, kEncoderGyro, kMouseOdometry };
+enum class EstimatorKind {
+  kDeadReckoning,
+  kStereoEkf,
+  kEncoderGyro,
+  kMouseOdometry,
+  kStereoEkfCaster
+};
 inline constexpr EstimatorKind kAllEstimatorKinds[] = {
     EstimatorKind::kStereoEkf, EstimatorKind::kDeadReckoning, EstimatorKind::kEncoderGyro,
-    EstimatorKind::kMouseOdometry};
+    EstimatorKind::kMouseOdometry, EstimatorKind::kStereoEkfCaster};
 
-// "dr", "ekf", "encoder-gyro", "mouse" (the irgs-sim --localize names).
+// The kinds that update with simulated stereo echoes (kStereoEkf, kStereoEkfCaster).
+bool usesStereo(EstimatorKind kind);
+
+// "dr", "ekf", "encoder-gyro", "mouse", "ekf-caster" (the irgs-sim --localize names).
 const char* toString(EstimatorKind kind);
 std::optional<EstimatorKind> parseEstimatorKind(std::string_view name);
 // Human-readable, for menus and plots: "Dead reckoning", "Stereo-sonar EKF (000)", ...
@@ -74,6 +90,12 @@ struct EstimatorRunnerConfig {
   std::optional<GyroCalibration> gyro_calibration;  // empty: the raw gyro rate is used
   double max_step_travel_m = 1.0;     // a larger tick jump between samples is a discontinuity
   std::optional<MouseRig> mouse_rig;  // kMouseOdometry; empty: the profile's drive/mouse_sensors
+  // kStereoEkfCaster: Q = caster_lambda ||e|| I6 per period (36) [000: 0.005; see
+  // docs/localization.md for what it does with our wheel errors], the dead-reckoning period,
+  // and the geometry (empty: the profile's drive/three_caster).
+  double caster_lambda = 0.005;
+  double caster_period_s = 0.001;
+  std::optional<CasterDriveGeometry> caster_geometry;
 };
 
 // Throws std::invalid_argument for non-finite or non-positive stddevs/periods, no sensors, or
@@ -100,6 +122,9 @@ struct EstimatorStep {
   std::vector<StereoReadingRecord> readings;    // kStereoEkf: the readings taken at this sample
   std::optional<DrStepResult> encoder_gyro;     // kEncoderGyro: the filter's step
   std::optional<TwoSensorMotion> mouse_motion;  // kMouseOdometry: this interval's inference
+  // kStereoEkfCaster: J+ periods predicted this sample and the sum of their residuals ||e||.
+  int caster_periods = 0;
+  double caster_residual_sum = 0.0;
   // Error estimate - truth (x, y, wrapped theta) and NEES e' P^-1 e, when truth is known and P
   // is positive definite.
   std::optional<LocState> error;
@@ -126,6 +151,9 @@ struct EstimatorMetrics {
   // Stereo echoes received (kStereoEkf) / gyro samples / floor-sensor readings (kMouseOdometry).
   std::int64_t readings = 0;
   std::int64_t accepted = 0;  // applied updates / readings with both sensors tracking
+  // kStereoEkfCaster: J+ periods predicted and their mean least-squares residual ||e|| (rad).
+  std::int64_t caster_periods = 0;
+  double mean_caster_residual_rad = 0.0;
   double acceptedFraction() const {
     return readings > 0 ? static_cast<double>(accepted) / static_cast<double>(readings) : 0.0;
   }
@@ -160,6 +188,9 @@ class EstimatorRunner {
   void finishStep(const TelemetrySample& sample);
   void fireStereo(const Pose2& truth);
   void predictFromMice(const TelemetrySample& sample);
+  void predictFromCasters(const TelemetrySample& sample, double dt);
+  bool casterJump(const CasterEncoders& before, const CasterEncoders& now) const;
+  bool isCasterKind() const { return config_.kind == EstimatorKind::kStereoEkfCaster; }
   void currentEstimate();
 
   EstimatorRunnerConfig config_;
@@ -173,6 +204,10 @@ class EstimatorRunner {
   std::optional<EncoderGyroFilter> encoder_gyro_;
   std::optional<MouseOdometry> mouse_;      // kMouseOdometry
   std::optional<MouseReading> last_mouse_;  // the previous sample's cumulative counts
+  double caster_ticks_per_rad_ = 0.0;
+  EkfLocalizer caster_dr_;                      // kStereoEkfCaster: J+ prediction only
+  std::optional<CasterEncoders> last_casters_;  // the previous sample's encoders
+  double caster_residual_total_ = 0.0;
   SimRandom echo_rng_;
 
   bool has_baseline_ = false;

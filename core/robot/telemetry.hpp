@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry/types.hpp"
+#include "core/robot/caster_encoders.hpp"
 #include "core/robot/mouse_counts.hpp"
 
 namespace irgs {
@@ -51,6 +52,9 @@ struct TelemetrySample {
   // Two optical floor sensors (paper 004), when present: counts since the start in each sensor's
   // axes (two samples' difference = that interval's report), status of the latest reading.
   std::optional<MouseReading> mouse;
+  // The six encoders of a three-caster robot (paper 000), when the drive is "three_caster";
+  // such a robot has no left/right wheels, so left_ticks and right_ticks stay 0.
+  std::optional<CasterEncoders> casters;
 };
 
 // The body touches something: a bumper is pressed or the drive reports a stall.

@@ -16,6 +16,7 @@ SimConfig typicalSimConfig(SimConfig base) {
 
 SimConfig idealSimConfig(SimConfig base) {
   base.odometry = OdometryErrorModel{};
+  base.caster_errors = CasterErrorModel{};  // the three-caster robot's wheels too
   base.sonar.range_stddev_m = 0.0;
   base.sonar.range_stddev_per_m = 0.0;
   base.sonar.dropout_probability = 0.0;

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/estimation/caster_profile.hpp"
 #include "core/estimation/mouse_odometry.hpp"
 #include "core/sim/diff_drive.hpp"
 #include "core/sim/geometry_queries.hpp"
@@ -24,6 +25,7 @@ constexpr std::uint64_t kSonarStream = 2;
 constexpr std::uint64_t kProximityStream = 3;
 constexpr std::uint64_t kGyroStream = 4;
 constexpr std::uint64_t kMouseStream = 5;
+constexpr std::uint64_t kCasterStream = 6;
 
 // Bisection steps when a step would penetrate: the remaining gap is below step * 2^-16.
 constexpr int kCollisionBisections = 16;
@@ -135,7 +137,9 @@ struct Simulator::Impl {
   // The right and left floor sensors, present when the profile has a mouse rig.
   std::optional<std::pair<MouseSensorSimulator, MouseSensorSimulator>> mice;
   SimRandom mouse_rng;
-  MouseReading mouse_total;  // counts since the start, in each sensor's axes
+  MouseReading mouse_total;                     // counts since the start, in each sensor's axes
+  std::optional<CasterDriveSimulator> casters;  // drive type "three_caster"
+  SimRandom caster_rng;
 
   Pose2 true_pose;
   Pose2 odom_pose;
@@ -173,8 +177,10 @@ struct Simulator::Impl {
         motion_rng(SimRandom::stream(c.seed, kMotionStream)),
         sonar_rng(SimRandom::stream(c.seed, kSonarStream)),
         proximity_rng(SimRandom::stream(c.seed, kProximityStream)),
-        mouse_rng(SimRandom::stream(c.seed, kMouseStream)) {
+        mouse_rng(SimRandom::stream(c.seed, kMouseStream)),
+        caster_rng(SimRandom::stream(c.seed, kCasterStream)) {
     validate(profile, config);
+    makeCasters();
     if (config.gyro.enabled)
       gyro.emplace(config.gyro, SimRandom::stream(c.seed, kGyroStream));
     makeMice();
@@ -305,36 +311,10 @@ struct Simulator::Impl {
     return world->polygonTouches(body_world);
   }
 
-  void move() {
+  // Moves the true pose by the arc (ds, dtheta), cut short where the body would touch geometry
+  // (then the drive stalls); returns the fraction of the step made.
+  double moveBody(double ds, double dtheta) {
     const double dt = config.dt_s;
-    const MotionLimits& lim = profile.limits;
-    const DriveGeometry& drive = profile.drive;
-    const OdometryErrorModel& err = config.odometry;
-
-    // Velocity the wheel controllers track: the command clamped to the limits, reached at the
-    // profile's accelerations.
-    const double target_v = std::clamp(command.linear_mps, -lim.max_speed_mps, lim.max_speed_mps);
-    const double target_w =
-        std::clamp(command.angular_radps, -lim.max_turn_rate_radps, lim.max_turn_rate_radps);
-    v_mps = approach(v_mps, target_v, lim.max_accel_mps2 * dt);
-    omega_radps = approach(omega_radps, target_w, lim.max_turn_accel_radps2 * dt);
-
-    // Wheel rotation this step from the nominal kinematics (what the encoders see).
-    const WheelSpeeds wheels = wheelSpeeds(v_mps, omega_radps, drive.wheelbase_m);
-    const double dphi_left = wheels.left_mps * dt / drive.wheel_radius_m;
-    const double dphi_right = wheels.right_mps * dt / drive.wheel_radius_m;
-
-    // True ground travel: scale factors, random slip, true wheelbase.
-    double slip_left = 1.0, slip_right = 1.0;
-    if (err.slip_stddev > 0.0) {
-      slip_left += err.slip_stddev * motion_rng.gaussian();
-      slip_right += err.slip_stddev * motion_rng.gaussian();
-    }
-    const double d_left = dphi_left * drive.wheel_radius_m * err.left_scale * slip_left;
-    const double d_right = dphi_right * drive.wheel_radius_m * err.right_scale * slip_right;
-    const double ds = 0.5 * (d_left + d_right);
-    const double dtheta = (d_right - d_left) / (drive.wheelbase_m * err.wheelbase_scale);
-
     double fraction = 1.0;
     Pose2 next = integrateArc(true_pose, ds, dtheta);
     double travel = (next.position() - true_pose.position()).norm();
@@ -361,6 +341,83 @@ struct Simulator::Impl {
       clearance -= travel;
       clearance_fresh = false;
     }
+    return fraction;
+  }
+
+  // The three-caster robot: the body moves with the (limited) commanded twist, the casters
+  // follow it and their encoders and the robot's J+ dead reckoning count what they did.
+  void moveCasters() {
+    const double dt = config.dt_s;
+    moveBody(v_mps * dt, omega_radps * dt);
+    const Pose2 odom_before = odom_pose;
+    casters->advance(BodyTwist(true_velocity.linear_mps, 0.0, true_velocity.angular_radps), dt,
+                     odom_pose, caster_rng);
+    const BodyIncrement odo = incrementBetween(odom_before, odom_pose);
+    measured_ds = odo.dx_m;
+    measured_dtheta = odo.dtheta_rad;
+  }
+
+  void makeCasters() {
+    casters.reset();
+    if (profile.drive.type != DriveType::kThreeCaster)
+      return;
+    const CasterGeometryResult geometry = casterGeometryFromProfile(profile);
+    if (!geometry.geometry) {
+      const Diagnostic& d = geometry.diagnostics.front();
+      throw std::invalid_argument("robot profile " + d.field + ": " + d.message);
+    }
+    CasterErrorModel errors;
+    if (config.caster_errors) {
+      errors = *config.caster_errors;
+    } else {
+      const CasterErrorResult from_profile = casterErrorsFromProfile(profile);
+      if (!from_profile.errors) {
+        const Diagnostic& d = from_profile.diagnostics.front();
+        throw std::invalid_argument("robot profile " + d.field + ": " + d.message);
+      }
+      errors = *from_profile.errors;
+    }
+    require(std::isfinite(config.caster_period_s) && config.caster_period_s > 0.0,
+            "caster_period_s must be finite and > 0");
+    casters.emplace(*geometry.geometry, errors, profile.drive.ticksPerWheelRad(),
+                    config.caster_period_s);
+  }
+
+  void move() {
+    const double dt = config.dt_s;
+    const MotionLimits& lim = profile.limits;
+    const DriveGeometry& drive = profile.drive;
+    const OdometryErrorModel& err = config.odometry;
+
+    // Velocity the wheel controllers track: the command clamped to the limits, reached at the
+    // profile's accelerations.
+    const double target_v = std::clamp(command.linear_mps, -lim.max_speed_mps, lim.max_speed_mps);
+    const double target_w =
+        std::clamp(command.angular_radps, -lim.max_turn_rate_radps, lim.max_turn_rate_radps);
+    v_mps = approach(v_mps, target_v, lim.max_accel_mps2 * dt);
+    omega_radps = approach(omega_radps, target_w, lim.max_turn_accel_radps2 * dt);
+
+    if (casters) {
+      moveCasters();
+      return;
+    }
+    // Wheel rotation this step from the nominal kinematics (what the encoders see).
+    const WheelSpeeds wheels = wheelSpeeds(v_mps, omega_radps, drive.wheelbase_m);
+    const double dphi_left = wheels.left_mps * dt / drive.wheel_radius_m;
+    const double dphi_right = wheels.right_mps * dt / drive.wheel_radius_m;
+
+    // True ground travel: scale factors, random slip, true wheelbase.
+    double slip_left = 1.0, slip_right = 1.0;
+    if (err.slip_stddev > 0.0) {
+      slip_left += err.slip_stddev * motion_rng.gaussian();
+      slip_right += err.slip_stddev * motion_rng.gaussian();
+    }
+    const double d_left = dphi_left * drive.wheel_radius_m * err.left_scale * slip_left;
+    const double d_right = dphi_right * drive.wheel_radius_m * err.right_scale * slip_right;
+    const double ds = 0.5 * (d_left + d_right);
+    const double dtheta = (d_right - d_left) / (drive.wheelbase_m * err.wheelbase_scale);
+
+    const double fraction = moveBody(ds, dtheta);
 
     // Encoders: quantised cumulative wheel rotation (floor, so counts are consistent in both
     // directions). Odometry: tick deltas through the NOMINAL model.
@@ -514,6 +571,10 @@ struct Simulator::Impl {
     else
       sample.gyro.reset();
     readMice(before, sample);
+    if (casters)
+      sample.casters = casters->encoders();
+    else
+      sample.casters.reset();
   }
 };
 

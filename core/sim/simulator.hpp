@@ -1,5 +1,6 @@
 #pragma once
-// Deterministic, seeded, fixed-step simulation of a differential-drive robot in a WorldMap
+// Deterministic, seeded, fixed-step simulation of a differential-drive robot (or the
+// three-caster robot of paper 000, caster_drive_sim.hpp) in a WorldMap
 // (vector walls/obstacles, or the map's raster layer), with odometry error and sonar, bumper
 // and proximity sensors. Pure: no clocks, no threads; the caller decides how often to step.
 //
@@ -23,11 +24,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/estimation/mouse_sensor.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
+#include "core/sim/caster_drive_sim.hpp"
 #include "core/sim/gyro_sim.hpp"
 #include "core/sim/sim_world.hpp"
 #include "core/world/world_map.hpp"
@@ -72,6 +75,13 @@ struct SimConfig {
   bool mouse_sensors = true;
   MouseNoise mouse_noise;
   double mouse_floor_gap_m = 0.0;  // sensor-to-floor gap; above the rig's max_lift_m: no counts
+  // The three-caster robot of paper 000 (profiles with drive type "three_caster"; see
+  // caster_drive_sim.hpp): its wheel errors, empty = the profile's
+  // drive/three_caster/simulated_errors; and the period its kinematics and its own J+ dead
+  // reckoning run at within each step [000: 1 ms]. The motion's random numbers come from their
+  // own stream (6). The differential-drive `odometry` errors do not apply to it.
+  std::optional<CasterErrorModel> caster_errors;
+  double caster_period_s = 0.001;
 };
 
 class Simulator {

@@ -100,6 +100,17 @@ TEST(AppOptions, RejectsBadValuesWithAMessageNamingTheOption) {
   EXPECT_TRUE(parse({"stray.json"}).message.contains("--map stray.json"));
 }
 
+TEST(AppOptions, LocalizeTakesEveryEstimatorName) {
+  for (const char* name : {"ekf", "dr", "encoder-gyro", "mouse", "ekf-caster"}) {
+    const AppOptionsResult r = parse({"--localize", name});
+    ASSERT_TRUE(r.options.has_value()) << name << ": " << r.message.toStdString();
+    EXPECT_EQ(r.options->localize, QString::fromLatin1(name));
+  }
+  const AppOptionsResult bad = parse({"--localize", "kalman"});
+  EXPECT_FALSE(bad.options.has_value());
+  EXPECT_TRUE(bad.message.contains("ekf-caster")) << bad.message.toStdString();
+}
+
 TEST(AppOptions, HelpIsNotAnError) {
   const AppOptionsResult r = parse({"--help"});
   EXPECT_FALSE(r.options.has_value());

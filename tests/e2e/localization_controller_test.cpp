@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <QAction>
 #include <QDockWidget>
 #include <QMainWindow>
+#include <QMenu>
 #include <QtTest/QTest>
 #include <cmath>
 #include <string>
@@ -163,6 +165,63 @@ TEST_F(LocalizationControllerTest, MouseOdometryRunsOnTheMouseProfileAndIsRefuse
   const widgets::EstimatorOverlay& overlay = canvas_->estimatorOverlay();
   ASSERT_EQ(overlay.poses.size(), 3u);
   EXPECT_EQ(overlay.poses.back().label, QStringLiteral("mouse"));
+  delete controller;
+}
+
+// The stereo-sonar EKF on paper 000's own three-caster robot: the simulated robot reports its
+// six caster encoders, the estimator predicts with J+ and the adaptive noise and updates with
+// the sonar; the thesis robot is refused with the drive type named, and the caster robot
+// refuses the wheel-encoder EKF.
+TEST_F(LocalizationControllerTest, TheCasterEkfRunsOnTheCasterProfileAndIsRefusedWithoutIt) {
+  controller_->setEstimator(EstimatorKind::kStereoEkfCaster);
+  EXPECT_EQ(controller_->runner(), nullptr);
+  EXPECT_FALSE(controller_->estimator().has_value());
+  EXPECT_TRUE(lines_.join('\n').contains(QStringLiteral("three_caster")))
+      << lines_.join('\n').toStdString();
+
+  const RobotProfileResult caster =
+      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/caster3_000.json");
+  ASSERT_TRUE(caster.profile.has_value());
+  SessionController session(*caster.profile, test::simulatedFactory());
+  session.loadWorld(corridor(), QStringLiteral("corridor.json"));
+  QStringList lines;
+  QObject::connect(&session, &SessionController::consoleEvent,
+                   [&lines](EventLevel, double, const QString& text) { lines << text; });
+  auto* controller = new LocalizationController(session, *canvas_, *window_);
+  controller->setEstimator(EstimatorKind::kStereoEkf);
+  EXPECT_EQ(controller->runner(), nullptr);
+  EXPECT_TRUE(lines.join('\n').contains(QStringLiteral("use 'ekf-caster'")))
+      << lines.join('\n').toStdString();
+  // The menu offers it (every estimator is listed) and picking it starts it.
+  QAction* entry = nullptr;
+  for (QAction* a : controller->menu().actions())
+    if (a->text() == QString::fromLatin1(displayName(EstimatorKind::kStereoEkfCaster)))
+      entry = a;
+  ASSERT_NE(entry, nullptr);
+  entry->trigger();
+  ASSERT_NE(controller->runner(), nullptr);
+  EXPECT_EQ(controller->estimator(), EstimatorKind::kStereoEkfCaster);
+  session.drive(0.3, 0.0);
+  for (double t = 0.0; t < 10.0; t += 0.05)
+    session.tick(0.05);
+  const EstimatorRunner& runner = *controller->runner();
+  EXPECT_GT(runner.metrics().distance_m, 2.0);
+  EXPECT_GT(runner.metrics().readings, 50);
+  EXPECT_GT(runner.metrics().acceptedFraction(), 0.5);
+  EXPECT_LT(runner.metrics().max_position_error_m, 0.1);
+  // Every 1 ms period predicted, although the GUI feeds one sample per frame.
+  EXPECT_NEAR(static_cast<double>(runner.metrics().caster_periods),
+              1000.0 * runner.metrics().duration_s, 60.0);
+  const widgets::EstimatorOverlay& overlay = canvas_->estimatorOverlay();
+  ASSERT_EQ(overlay.poses.size(), 3u);
+  EXPECT_EQ(overlay.poses.back().label, QStringLiteral("EKF (J+)"));
+  EXPECT_TRUE(overlay.poses.back().covariance.has_value());
+  // A single update reports the J+ prediction and its adaptive noise with the sonar reading.
+  lines.clear();
+  controller->stepUpdate();
+  const QString text = lines.join('\n');
+  EXPECT_TRUE(text.contains(QStringLiteral("caster J+ prediction"))) << text.toStdString();
+  EXPECT_TRUE(text.contains(QStringLiteral("λ = 0.005"))) << text.toStdString();
   delete controller;
 }
 

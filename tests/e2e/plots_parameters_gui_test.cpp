@@ -110,6 +110,10 @@ TEST_F(DocksTest, AlgorithmParametersTakeEffectAndAreSavedPerRobot) {
   ASSERT_NE(window_->localization().runner(), nullptr);
   EXPECT_DOUBLE_EQ(window_->localization().runner()->config().ekf.eps1_m, 0.2);
   EXPECT_DOUBLE_EQ(window_->localization().runner()->config().ekf.gate, 9.0);
+  // The three-caster EKF's adaptive process-noise scale lambda (paper 000, (36)).
+  EXPECT_DOUBLE_EQ(*table.value(QStringLiteral("ekf/caster_lambda")), 0.005);
+  params.edit(QStringLiteral("ekf/caster_lambda"), 0.05);
+  EXPECT_DOUBLE_EQ(window_->localization().runner()->config().caster_lambda, 0.05);
   // Planning: the turn quantum and the A* budget.
   params.edit(QStringLiteral("planning/turn_quantum_deg"), 45.0);
   params.edit(QStringLiteral("planning/budget_s"), 1.0);

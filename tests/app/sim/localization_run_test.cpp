@@ -133,7 +133,18 @@ TEST(LocalizationRun, TheCommandLineTakesTheEstimatorAndRefusesNonsense) {
   EXPECT_EQ(ok.options->localize, "encoder-gyro");
   const auto bad = parse({"--map", "m.json", "--out", "o", "--localize", "kalman"});
   EXPECT_FALSE(bad.options);
-  EXPECT_NE(bad.error.find("ekf, dr, encoder-gyro or mouse"), std::string::npos);
+  EXPECT_NE(bad.error.find("ekf, dr, encoder-gyro, mouse or ekf-caster"), std::string::npos);
+  const auto caster = parse(
+      {"--map", "m.json", "--out", "o", "--localize", "ekf-caster", "--caster-lambda", "0.05"});
+  ASSERT_TRUE(caster.options) << caster.error;
+  EXPECT_EQ(caster.options->caster_lambda, 0.05);
+  // lambda belongs to the caster EKF and is a non-negative scale.
+  EXPECT_FALSE(
+      parse({"--map", "m.json", "--out", "o", "--localize", "ekf", "--caster-lambda", "0.05"})
+          .options);
+  EXPECT_FALSE(
+      parse({"--map", "m.json", "--out", "o", "--localize", "ekf-caster", "--caster-lambda", "-1"})
+          .options);
   EXPECT_FALSE(
       parse({"--map", "m.json", "--out", "o", "--localize", "ekf", "--behaviour", "coverage"})
           .options);

@@ -1,0 +1,78 @@
+# irgs-sim --localize ekf-caster on MAP (the bundled corridor, a lap hugging the central block)
+# with ROBOT (the three-caster robot of paper 000): the run must finish and write both files;
+# the EKF's error must stay bounded (RMS below 5 cm, max over the whole run below 10 cm) while the
+# J+ dead reckoning's error grows (beyond 1 m at the end, more than twice what
+# it was a quarter of the way round, and 20x the EKF's final error); the sonar readings must
+# be accepted and the adaptive noise must have seen a residual.
+file(REMOVE_RECURSE ${WORK})
+execute_process(COMMAND ${SIM} --robot ${ROBOT} --map ${MAP} --out ${WORK} --localize ekf-caster
+                        --seed 1 --route 15.9,0.775/15.9,-14.55/-1.0,-14.55/-1.0,0.775/2.0,0.775
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "irgs-sim --localize ekf-caster failed (${code}): ${out} ${err}")
+endif()
+foreach(f localization_metrics.json localization.csv)
+  if(NOT EXISTS ${WORK}/${f})
+    message(FATAL_ERROR "missing output ${f}")
+  endif()
+endforeach()
+
+# CMake compares integers and decimals as version-like strings: scale to millimetres.
+function(to_mm value out)
+  string(REGEX REPLACE "^([0-9]+)\\.([0-9][0-9][0-9]).*$" "\\1\\2" mm "${value}0000")
+  string(REGEX REPLACE "^0+([0-9])" "\\1" mm "${mm}")
+  set(${out} ${mm} PARENT_SCOPE)
+endfunction()
+
+file(READ ${WORK}/localization_metrics.json metrics)
+string(JSON estimator GET "${metrics}" estimator)
+string(JSON robot GET "${metrics}" robot)
+string(JSON completed GET "${metrics}" route_completed)
+string(JSON rms GET "${metrics}" estimate rms_position_error_m)
+string(JSON max GET "${metrics}" estimate max_position_error_m)
+string(JSON final GET "${metrics}" estimate final_position_error_m)
+string(JSON dr_final GET "${metrics}" dead_reckoning final_position_error_m)
+string(JSON nees GET "${metrics}" nees fraction_within_95)
+string(JSON accepted GET "${metrics}" measurements accepted_fraction)
+string(JSON periods GET "${metrics}" caster periods)
+string(JSON residual GET "${metrics}" caster mean_residual_rad)
+if(NOT estimator STREQUAL "ekf-caster" OR NOT robot STREQUAL "caster3_000" OR NOT completed)
+  message(FATAL_ERROR "wrong run or the route did not complete: ${metrics}")
+endif()
+to_mm(${rms} rms_mm)
+to_mm(${max} max_mm)
+to_mm(${final} final_mm)
+to_mm(${dr_final} dr_final_mm)
+to_mm(${accepted} accepted_permille)
+math(EXPR twenty_final "20 * ${final_mm}")
+if(rms_mm GREATER 50 OR max_mm GREATER 100)
+  message(FATAL_ERROR "the caster EKF is not bounded: RMS ${rms} m, max ${max} m")
+endif()
+if(dr_final_mm LESS 1000 OR NOT dr_final_mm GREATER twenty_final)
+  message(FATAL_ERROR "dead reckoning final ${dr_final} m vs EKF final ${final} m")
+endif()
+if(accepted_permille LESS 900 OR periods LESS 200000 OR NOT residual GREATER 0)
+  message(FATAL_ERROR "accepted ${accepted}, ${periods} J+ periods, residual ${residual}")
+endif()
+
+# The series: the EKF error stays small on every row, dead reckoning's grows.
+file(STRINGS ${WORK}/localization.csv rows)
+list(LENGTH rows n)
+if(n LESS 1000)
+  message(FATAL_ERROR "only ${n} rows in localization.csv")
+endif()
+math(EXPR quarter "${n} / 4")
+list(GET rows ${quarter} row_quarter)
+list(GET rows -1 row_last)
+string(REPLACE "," ";" row_quarter "${row_quarter}")
+string(REPLACE "," ";" row_last "${row_last}")
+list(GET row_quarter 14 dr_quarter)  # dr_err_pos_m
+list(GET row_last 14 dr_last)
+to_mm(${dr_quarter} dr_quarter_mm)
+to_mm(${dr_last} dr_last_mm)
+math(EXPR twice_quarter "2 * ${dr_quarter_mm}")
+if(NOT dr_last_mm GREATER twice_quarter)
+  message(FATAL_ERROR "dead reckoning does not grow: ${dr_quarter} m at a quarter, ${dr_last} m at the end")
+endif()
+message(STATUS "caster EKF RMS ${rms} m, max ${max} m, final ${final} m; DR ${dr_quarter} m at a "
+               "quarter, final ${dr_final} m; NEES within 95 % ${nees}; accepted ${accepted}")
