@@ -21,6 +21,7 @@
 #include "app/gui/link_ui.hpp"
 #include "app/gui/recording_ui.hpp"
 #include "app/gui/rerun_dialog.hpp"
+#include "app/recording/recording_reader.hpp"
 #include "app/recording/session_recorder.hpp"
 #include "comms/mavlink/frame_encoder.hpp"
 #include "comms/mavlink/messages.hpp"
@@ -177,6 +178,27 @@ TEST_F(RerunUiTest, ACancelledDialogStartsNothingAndASimulatorRecordingIsRefused
   ASSERT_EQ(recording_->startRecording(sim), QString());
   recording_->stopRecording();
   EXPECT_TRUE(rerun_->start(sim).contains(QStringLiteral("no received link bytes")));
+}
+
+TEST_F(RerunUiTest, RecordingsCarryTheMappingParametersInForceAndTheirChanges) {
+  const QString file = dir_.filePath(QStringLiteral("params.irgsrec"));
+  recording_->setRobotFile(QStringLiteral("/some/where/thesis_robot.json"));
+  ASSERT_EQ(recording_->startRecording(file), QString());
+  session_->setMappingParameters(0.02, 1.5);
+  recording_->stopRecording();
+  const recording::LoadResult loaded = recording::loadRecording(file.toStdString());
+  ASSERT_TRUE(loaded.recording) << loaded.error;
+  const auto& meta = loaded.recording->meta;
+  EXPECT_EQ(meta.at("robot_file"), "/some/where/thesis_robot.json");
+  EXPECT_EQ(meta.at("param.grid_resolution_m"), "0.02");
+  EXPECT_EQ(meta.at("param.sonar_valid_distance_m"), "1.5");
+  const recording::RerunParameters recorded = recording::recordedRerunParameters(meta);
+  EXPECT_EQ(recorded.grid_resolution_m, 0.02);
+  EXPECT_EQ(recorded.validDistance(), 1.5);
+  bool event = false;
+  for (const recording::RecordedEvent& e : loaded.recording->events)
+    event = event || e.text.find("Mapping parameters: grid_resolution_m=0.02") == 0;
+  EXPECT_TRUE(event);
 }
 
 TEST_F(RerunUiTest, DestroyingTheWindowDuringAReplayAndWithARerunOpenIsSafe) {

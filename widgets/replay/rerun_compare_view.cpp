@@ -7,7 +7,9 @@
 #include <QPainterPath>
 #include <QSplitter>
 #include <QTableWidget>
+#include <QTimer>
 #include <QVBoxLayout>
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -28,6 +30,17 @@ void TrajectoryCanvas::paintEvent(QPaintEvent* event) {
   MapCanvas::paintEvent(event);
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
+  if (!tracks_.empty()) {  // a backing for the legend, so walls under it do not cross the text
+    int text_width = 0;
+    for (const TrajectoryTrack& track : tracks_)
+      text_width = std::max(text_width, p.fontMetrics().horizontalAdvance(track.label));
+    QColor backing = palette().color(QPalette::Base);
+    backing.setAlpha(220);
+    p.setPen(Qt::NoPen);
+    p.setBrush(backing);
+    p.drawRoundedRect(QRectF(4, 4, 40 + text_width, 8 + 16.0 * static_cast<double>(tracks_.size())),
+                      4, 4);
+  }
   int legend_y = 18;
   for (const TrajectoryTrack& track : tracks_) {
     QPainterPath path;
@@ -79,11 +92,13 @@ RerunCompareView::RerunCompareView(QWidget* parent) : QWidget(parent) {
   table_->setObjectName(QStringLiteral("rerunMetrics"));
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->verticalHeader()->setVisible(false);
+  table_->verticalHeader()->setDefaultSectionSize(table_->fontMetrics().height() + 6);
   table_->horizontalHeader()->setStretchLastSection(true);
   vertical->addWidget(maps);
   vertical->addWidget(table_);
   vertical->setStretchFactor(0, 3);
-  vertical->setStretchFactor(1, 1);
+  vertical->setStretchFactor(1, 2);
+  vertical->setSizes({560, 340});  // the table shows all its rows in a 900 px window
   layout->addWidget(vertical);
 
   connect(recorded_, &MapCanvas::viewChanged, this, [this] { syncView(*recorded_, *rerun_); });
@@ -96,6 +111,18 @@ void RerunCompareView::syncView(const TrajectoryCanvas& from, TrajectoryCanvas& 
   syncing_ = true;
   to.setView(from.viewCentre(), from.pixelsPerMetre());
   syncing_ = false;
+}
+
+void RerunCompareView::fitBoth() {
+  syncing_ = true;  // each canvas's own resize/fit signals must not stop the other fitting
+  recorded_->zoomToFit();
+  rerun_->setView(recorded_->viewCentre(), recorded_->pixelsPerMetre());
+  syncing_ = false;
+}
+
+void RerunCompareView::showEvent(QShowEvent* event) {
+  QWidget::showEvent(event);
+  QTimer::singleShot(0, this, &RerunCompareView::fitBoth);
 }
 
 void RerunCompareView::setWorldMap(const irgs::WorldMap& map) {
@@ -140,8 +167,7 @@ void RerunCompareView::setRuns(const RerunSide& recorded, const RerunSide& rerun
   }
   recorded_title_->setText(recorded.title);
   rerun_title_->setText(rerun.title);
-  recorded_->zoomToFit();
-  syncView(*recorded_, *rerun_);
+  fitBoth();
 }
 
 void RerunCompareView::setMetrics(const QStringList& columns,

@@ -70,9 +70,16 @@ class RerunCompareView : public QWidget {
   // Rows of the metrics table: the metric's name, then one cell per column of `columns`.
   void setMetrics(const QStringList& columns, const std::vector<QStringList>& rows);
 
+  // Fits the recorded map, trajectories included, and gives the re-run view the same view.
+  void fitBoth();
+
   TrajectoryCanvas& recordedCanvas() const { return *recorded_; }
   TrajectoryCanvas& rerunCanvas() const { return *rerun_; }
   QTableWidget& metricsTable() const { return *table_; }
+
+ protected:
+  // The canvases only have their real size once the window is shown: fit then.
+  void showEvent(QShowEvent* event) override;
 
  private:
   void syncView(const TrajectoryCanvas& from, TrajectoryCanvas& to);
