@@ -40,14 +40,14 @@ void usage(std::FILE* out) {
 void listParameters() {
   const rec::RerunParameters defaults;
   for (const rec::RerunParameterInfo& info : rec::rerunParameters()) {
-    std::string range;
+    std::string values;  // the choices, or the default
     if (!info.choices.empty()) {
       for (const std::string& c : info.choices)
-        range += (range.empty() ? "" : "|") + c;
+        values += (values.empty() ? "" : "|") + c;
     } else {
-      range = "[" + rec::rerunParameterValue(defaults, info.name) + " default]";
+      values = rec::rerunParameterValue(defaults, info.name) + " (default)";
     }
-    std::printf("%-24s %-8s %-28s %s\n", info.name.c_str(), info.unit.c_str(), range.c_str(),
+    std::printf("%-24s %-8s %-30s %s\n", info.name.c_str(), info.unit.c_str(), values.c_str(),
                 info.description.c_str());
   }
 }
