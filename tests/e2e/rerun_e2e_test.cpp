@@ -6,6 +6,7 @@
 //    pose difference 0;
 //  * with a shorter sonar valid distance and a coarser grid the map changes measurably (cell
 //    agreement and occupied F1 below 0.95) while the pose does not;
+//  * the encoder + gyro filter, mapping on its estimate, moves the pose and the map a little;
 //  * a bad --param is refused with exit status 2.
 
 #include <gtest/gtest.h>
@@ -249,6 +250,22 @@ TEST_F(RerunEndToEnd, DefaultsReproduceTheLiveSessionAndChangedParametersChangeT
   EXPECT_EQ(c["changed_parameters"].size(), 2u);
   std::printf("[ info ] %zu live cells reproduced; changed: %s", live_grid.size(),
               slurp(dir_ / "changed.log").c_str());
+
+  // An estimator on the recorded ticks and gyro, mapping on its estimate: the pose moves a
+  // little (the 001 filter is not the robot's own odometry), the map with it.
+  const fs::path filtered = dir_ / "filtered";
+  ASSERT_EQ(runRerun(recording.string() +
+                         " --param estimator=encoder-gyro --param map_on_estimate=1 --out " +
+                         filtered.string(),
+                     dir_ / "filtered.log"),
+            0)
+      << slurp(dir_ / "filtered.log");
+  const nlohmann::json f = readJson(filtered / "metrics.json");
+  EXPECT_EQ(f["rerun"]["parameters"]["estimator"], "encoder-gyro");
+  EXPECT_GT(f["pose"]["rms_position_m"].get<double>(), 1e-4);
+  EXPECT_LT(f["pose"]["max_position_m"].get<double>(), 0.2);
+  EXPECT_FALSE(f["grid"]["identical"].get<bool>());
+  std::printf("[ info ] filtered: %s", slurp(dir_ / "filtered.log").c_str());
 
   EXPECT_EQ(runRerun(recording.string() + " --param grid_resolution_m=fine --out " +
                          (dir_ / "bad").string(),
