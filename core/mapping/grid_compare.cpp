@@ -72,12 +72,10 @@ OccupiedAgreement agreementOf(std::size_t matched_candidate, std::size_t candida
     a.precision = a.recall = a.f1 = 1.0;
     return a;
   }
-  a.precision = candidate > 0 ? static_cast<double>(matched_candidate) /
-                                    static_cast<double>(candidate)
-                              : 0.0;
-  a.recall = reference > 0 ? static_cast<double>(matched_reference) /
-                                 static_cast<double>(reference)
-                           : 0.0;
+  a.precision =
+      candidate > 0 ? static_cast<double>(matched_candidate) / static_cast<double>(candidate) : 0.0;
+  a.recall =
+      reference > 0 ? static_cast<double>(matched_reference) / static_cast<double>(reference) : 0.0;
   a.f1 =
       a.precision + a.recall > 0.0 ? 2.0 * a.precision * a.recall / (a.precision + a.recall) : 0.0;
   return a;
