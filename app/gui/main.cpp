@@ -29,6 +29,7 @@
 #include "app/gui/main_window.hpp"
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/recording_ui.hpp"
+#include "app/gui/rerun_ui.hpp"
 #include "app/gui/session_controller.hpp"
 #include "app/gui/startup.hpp"
 #include "app/gui/stdin_control.hpp"
@@ -201,9 +202,11 @@ int main(int argc, char** argv) {
   // Session recording (app/recording) before any link opens, so it sees every byte; a replay
   // is not recorded again.
   auto* recording = new RecordingUi(session, window.linkUi().controller(), window);
+  new RerunUi(session, window, recording->openRecordingAction());   // File > Re-run with ...
   new CalibrationController(window, session, robot.file, &window);  // the Calibrate menu
   new DriveInputController(window.commandPanel(), session, makeSdlGamepadSource(), &window);
   recording->setCollectTrajectory(!options.trajectory_out_file.isEmpty());
+  recording->setRobotFile(robot.file);
   if (options.replay_file.isEmpty() && !options.no_record) {
     const QString path = options.record_file.isEmpty()
                              ? RecordingUi::newRecordingPath(

@@ -20,6 +20,7 @@
 #include "app/gui/linked_robot_handle.hpp"
 #include "app/recording/recording_reader.hpp"
 #include "app/recording/replay_player.hpp"
+#include "app/recording/rerun_parameters.hpp"
 #include "app/recording/session_recorder.hpp"
 #include "comms/robot/linked_robot.hpp"
 #include "comms/transport/io_thread.hpp"
@@ -135,6 +136,8 @@ RecordingUi::RecordingUi(SessionController& session, LinkController& link, QMain
   connect(&session_, &SessionController::consoleEvent, this,
           [this](EventLevel level, double, const QString& text) { onConsole(level, text); });
   connect(&link_, &LinkController::healthChanged, this, &RecordingUi::onHealth);
+  connect(&session_, &SessionController::mappingParametersChanged, this,
+          &RecordingUi::onMappingParametersChanged);
   recorder_check_.setInterval(kRecorderCheck_ms);
   connect(&recorder_check_, &QTimer::timeout, this, &RecordingUi::checkRecorder);
   drain_check_.setInterval(kDrainPoll_ms);
@@ -142,9 +145,18 @@ RecordingUi::RecordingUi(SessionController& session, LinkController& link, QMain
 }
 
 RecordingUi::~RecordingUi() {
-  // The replayed robot (and its link on io_) goes before the io thread.
-  if (replaying())
-    closeReplay();
+  // The window is being destroyed (it owns this object): do not put the previous robot back,
+  // since installing a robot signals the window's own slots, which are gone by now (that
+  // crashed). The replayed robot keeps its IoThread alive through its handle; the session that
+  // owns it is destroyed after the window.
+  drain_check_.stop();
+  if (player_ != nullptr) {
+    if (bar_)
+      bar_->disconnect(player_);
+    delete player_;
+    player_ = nullptr;
+  }
+  saved_factory_ = {};
   stopRecording();
 }
 
@@ -179,6 +191,10 @@ QString RecordingUi::startRecording(const QString& path) {
       {"robot", session_.profile().name},
       {"map", session_.worldSource().toStdString()},
   };
+  if (!robot_file_.isEmpty())
+    meta["robot_file"] = QFileInfo(robot_file_).absoluteFilePath().toStdString();
+  for (const auto& [key, value] : mappingParameterMeta())
+    meta[key] = value;
   recording::SessionRecorder::OpenResult opened =
       recording::SessionRecorder::create(info.absoluteFilePath().toStdString(), meta);
   if (!opened.recorder)
@@ -194,6 +210,29 @@ QString RecordingUi::startRecording(const QString& path) {
   session_.report(EventLevel::kInfo,
                   tr("Recording this session to %1").arg(info.absoluteFilePath()));
   return {};
+}
+
+std::map<std::string, std::string> RecordingUi::mappingParameterMeta() const {
+  // The re-run's "recorded parameters" (app/recording/rerun_parameters.hpp): what this session
+  // maps with. The sensor model is the code's default in the GUI, so it needs no entry.
+  const std::string prefix = recording::kRerunMetaPrefix;
+  const std::optional<double> valid = session_.sonarValidDistance_m();
+  return {{prefix + "grid_resolution_m",
+           QString::number(session_.grid().resolution_m(), 'g', 10).toStdString()},
+          {prefix + "sonar_valid_distance_m",
+           QString::number(valid.value_or(0.0), 'g', 10).toStdString()}};
+}
+
+void RecordingUi::onMappingParametersChanged() {
+  if (!recorder_ || replaying())
+    return;
+  // The meta holds the parameters last in force; the change is also on the timeline.
+  std::string text = "Mapping parameters:";
+  for (const auto& [key, value] : mappingParameterMeta()) {
+    recorder_->setMeta(key, value);
+    text += " " + key.substr(std::string(recording::kRerunMetaPrefix).size()) + "=" + value;
+  }
+  recorder_->recordEvent("info", text);
 }
 
 void RecordingUi::stopRecording() {

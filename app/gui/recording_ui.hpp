@@ -13,6 +13,7 @@
 #include <QPointer>
 #include <QString>
 #include <QTimer>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -63,6 +64,9 @@ class RecordingUi : public QObject {
   // Starts recording into the new file `path` (its folder is created). Empty on success, else
   // why not (the session then runs unrecorded).
   QString startRecording(const QString& path);
+  // The robot profile file of the session, written to the recording's meta ("robot_file") so a
+  // re-run finds the same profile. Set before startRecording.
+  void setRobotFile(const QString& path) { robot_file_ = path; }
   void stopRecording();
   recording::SessionRecorder* recorder() const { return recorder_.get(); }
 
@@ -94,6 +98,8 @@ class RecordingUi : public QObject {
   void checkDrained();
   void onRobotReplacedElsewhere();
   void checkRecorder();
+  std::map<std::string, std::string> mappingParameterMeta() const;
+  void onMappingParametersChanged();
 
   SessionController& session_;
   LinkController& link_;
@@ -124,6 +130,7 @@ class RecordingUi : public QObject {
   bool expect_initial_sample_ = false;
   bool collect_trajectory_ = false;
   bool installing_ = false;  // we are replacing the session's robot ourselves
+  QString robot_file_;
 };
 
 }  // namespace irgs::gui

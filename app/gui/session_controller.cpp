@@ -386,6 +386,7 @@ void SessionController::setMappingParameters(double grid_resolution_m,
     grid_ = std::move(grid);
     emit gridReset();
   }
+  emit mappingParametersChanged();
 }
 
 void SessionController::resetGrid() {

@@ -139,7 +139,8 @@ class SessionController : public QObject {
   void robotStateChanged(const irgs::TelemetrySample& sample);
   // Cells changed since the previous signal (the session takes the grid's dirty rect).
   void gridChanged(const irgs::OccupancyGrid::CellRect& dirty_cells);
-  void gridReset();  // the grid was replaced: redraw everything
+  void gridReset();                 // the grid was replaced: redraw everything
+  void mappingParametersChanged();  // setMappingParameters() applied new values
   void consoleEvent(irgs::gui::EventLevel level, double time_s, const QString& text);
   void pausedChanged(bool paused);
   void speedFactorChanged(double factor);
