@@ -60,7 +60,8 @@ DecodedRecording decodeRecording(const Recording& recording, const RobotProfile&
     for (TelemetrySample& s : assembler.takeReady())
       out.samples.push_back({t, std::move(s)});
   };
-  // Link::flush: the session's events after the frames of a chunk (or a timer tick).
+  // Link::flush: the session's events, delivered after the frame that caused them (a link-up at
+  // its heartbeat) and after each timer tick.
   auto flush = [&](double t) {
     for (const comms::LinkEvent& event : session.takeOutput().events) {
       if (event.kind == comms::LinkEventKind::kLinkUp) {
@@ -95,6 +96,8 @@ DecodedRecording decodeRecording(const Recording& recording, const RobotProfile&
     session.onReceived(f.bytes.size(), counters, t);
     for (const mav::Frame& frame : frames) {
       session.onFrame(frame, t);
+      if (session.hasPendingEvents())
+        flush(t);
       // LinkedRobot::State::onFrame.
       if (frame.system_id == session_config.system_id)
         continue;
