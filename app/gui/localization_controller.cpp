@@ -144,8 +144,11 @@ LocalizationController::LocalizationController(SessionController& session,
   connect(step, &QPushButton::clicked, this, &LocalizationController::stepUpdate);
   connect(restart_button, &QPushButton::clicked, this, [this] { restart(); });
 
-  connect(&session_, &SessionController::robotStateChanged, this,
+  // Every sample feeds the estimator; the canvas overlay follows the display rate.
+  connect(&session_, &SessionController::sampleIntegrated, this,
           &LocalizationController::onSample);
+  connect(&session_, &SessionController::robotStateChanged, this,
+          &LocalizationController::updateOverlay);
   connect(&session_, &SessionController::robotReplaced, this, [this] { restart(); });
   connect(&session_, &SessionController::worldLoaded, this, [this] {
     initial_pose_.reset();  // a new map: its own start pose
@@ -299,7 +302,6 @@ void LocalizationController::onSample(const TelemetrySample& sample) {
   }
   if (stepping_ && !step.readings.empty())
     printStep(step);
-  updateOverlay();
 }
 
 void LocalizationController::updateOverlay() {

@@ -111,6 +111,7 @@ void SessionController::installRobot(std::unique_ptr<Robot> robot) {
     initial.true_pose = map_.start;
   latest_ = initial;
   emit robotReplaced();
+  emit sampleIntegrated(initial);
   emit robotStateChanged(initial);
 }
 
@@ -272,6 +273,7 @@ std::size_t SessionController::integratePending(const QElapsedTimer& tick_clock,
     }
     noteEvents(sample);
     display_time_s_ = std::max(display_time_s_, sample.time_s);
+    emit sampleIntegrated(sample);
     // Many samples per tick (fast speeds): also show the intermediate ones the robot moved to,
     // so the canvas trail follows the path rather than joining one pose per frame.
     if (!pending_.empty() && shown_this_tick < kMaxIntermediateStatesPerTick &&
