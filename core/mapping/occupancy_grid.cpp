@@ -392,6 +392,35 @@ void OccupancyGrid::applyCell(int col, int row, float delta, float lo, float hi)
   noteTouched({col, row, col, row});
 }
 
+namespace {
+
+// Row i of `rows` as final cells (the exact scan when the estimates left it undecided); returns
+// its first cell, > col1[i] when it has none.
+IRGS_ALWAYS_INLINE inline int finalRow(const SonarCone& cone, const ConeScanSetup& setup,
+                                       ConeRowEstimates& rows, int i) {
+  if (rows.undecided(i)) [[unlikely]] {
+    ConeRow r;
+    if (coneRowAt(cone, setup, rows, i, r))
+      rows.set(i, r.col0, r.col1, r.free0, r.free1);
+    else
+      rows.set(i, 0, -1, 0, -1);
+  }
+  return rows.c0(i);
+}
+
+// Extends the cone's touched rectangle by a non-empty row (rows come ascending).
+IRGS_ALWAYS_INLINE inline void touchRow(OccupancyGrid::CellRect& touched, int c0, int c1, int row) {
+  if (touched.empty()) {
+    touched = {c0, row, c1, row};
+    return;
+  }
+  touched.col0 = std::min(touched.col0, c0);
+  touched.col1 = std::max(touched.col1, c1);
+  touched.row1 = row;
+}
+
+}  // namespace
+
 #if IRGS_GRID_AVX2
 namespace {
 
@@ -431,11 +460,9 @@ struct Avx2Cells {
 
 }  // namespace
 
-IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(const ConeRowEstimates& rows,
-                                                                int row0, int first, int last,
-                                                                float free_delta,
-                                                                float occupied_delta, float lo,
-                                                                float hi) {
+IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
+    const SonarCone& cone, const ConeScanSetup& setup, ConeRowEstimates& rows, CellRect& touched,
+    float free_delta, float occupied_delta, float lo, float hi) {
   Avx2Cells u{_mm256_set1_ps(free_delta),
               _mm256_set1_ps(occupied_delta),
               _mm256_set1_ps(lo),
@@ -443,19 +470,20 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(const ConeRowEst
               _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
               _mm256_setzero_si256()};
   std::uint64_t updates = 0;
-  for (int i = first; i <= last; ++i) {
-    const int c0 = rows.col0[i], c1 = rows.col1[i];
+  for (int i = 0; i < rows.count; ++i) {
+    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
     if (c0 > c1)
       continue;
-    const int row = row0 + i;
+    const int row = setup.row0 + i;
+    const int f0 = rows.f0(i), f1 = rows.f1(i);
+    touchRow(touched, c0, c1, row);
     const int ty = row >> kTileShift;
     const int row_offset = (row & kTileMask) * kTileSize;
     for (int col = c0; col <= c1;) {
       const int tx = col >> kTileShift;
       const int base = tx * kTileSize;
       const int run_end = std::min(c1, base + kTileMask);
-      u.piece(slotTile(tx, ty) + row_offset, col - base, run_end - base, rows.free0[i] - base,
-              rows.free1[i] - base);
+      u.piece(slotTile(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
       col = run_end + 1;
     }
     updates += static_cast<std::uint64_t>(c1 - c0 + 1);
@@ -514,11 +542,9 @@ struct Avx512Cells {
 
 }  // namespace
 
-IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(const ConeRowEstimates& rows,
-                                                                    int row0, int first, int last,
-                                                                    float free_delta,
-                                                                    float occupied_delta, float lo,
-                                                                    float hi) {
+IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
+    const SonarCone& cone, const ConeScanSetup& setup, ConeRowEstimates& rows, CellRect& touched,
+    float free_delta, float occupied_delta, float lo, float hi) {
   const __m512 zero = _mm512_setzero_ps();
   Avx512Cells u{_mm512_set1_ps(free_delta),
                 _mm512_set1_ps(occupied_delta),
@@ -528,19 +554,20 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(const ConeRo
                 _mm512_set1_ps(hi),
                 _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)};
   std::uint64_t updates = 0;
-  for (int i = first; i <= last; ++i) {
-    const int c0 = rows.col0[i], c1 = rows.col1[i];
+  for (int i = 0; i < rows.count; ++i) {
+    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
     if (c0 > c1)
       continue;
-    const int row = row0 + i;
+    const int row = setup.row0 + i;
+    const int f0 = rows.f0(i), f1 = rows.f1(i);
+    touchRow(touched, c0, c1, row);
     const int ty = row >> kTileShift;
     const int row_offset = (row & kTileMask) * kTileSize;
     for (int col = c0; col <= c1;) {
       const int tx = col >> kTileShift;
       const int base = tx * kTileSize;
       const int run_end = std::min(c1, base + kTileMask);
-      u.piece(slotTile(tx, ty) + row_offset, col - base, run_end - base, rows.free0[i] - base,
-              rows.free1[i] - base);
+      u.piece(slotTile(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
       col = run_end + 1;
     }
     updates += static_cast<std::uint64_t>(c1 - c0 + 1);
@@ -594,57 +621,33 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
   estimateConeRows(setup, scan_scratch_, rows, simd_);
   if (tile_slots_.empty())
     tile_slots_.assign(static_cast<std::size_t>(kTileSlots), TileSlot{});
-  // Rows the estimates left undecided are scanned exactly first, so that the update loops see
-  // final rows. (The previous version prefetched each row's first and last cache line here; on
-  // this scan's row order the hardware prefetchers do better: 7-15 % faster without.)
+  // Rows the estimates left undecided are scanned exactly on the way. (The previous version
+  // prefetched each row's first and last cache line; on this scan's row order the hardware
+  // prefetchers do better: 7-15 % faster without.)
   CellRect touched;
-  ConeRow r;
-  for (int i = 0; i < rows.count; ++i) {
-    if (rows.col0[i] == kUndecidedRow) [[unlikely]] {
-      if (coneRowAt(cone, setup, rows, i, r)) {
-        rows.col0[i] = r.col0;
-        rows.col1[i] = r.col1;
-        rows.free0[i] = r.free0;
-        rows.free1[i] = r.free1;
-      } else {
-        rows.col0[i] = 0;
-        rows.col1[i] = -1;
-      }
-    }
-    const int c0 = rows.col0[i], c1 = rows.col1[i];
-    if (c0 > c1)
-      continue;
-    const int row = setup.row0 + i;
-    if (touched.empty()) {
-      touched = {c0, row, c1, row};
-    } else {
-      touched.col0 = std::min(touched.col0, c0);
-      touched.col1 = std::max(touched.col1, c1);
-      touched.row1 = row;  // rows come ascending
-    }
-  }
-  if (touched.empty())
-    return;
   const auto free_delta = static_cast<float>(model.free_log_odds);
   const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
   const auto lo = static_cast<float>(model.clamp_min);
   const auto hi = static_cast<float>(model.clamp_max);
-  const int first = touched.row0 - setup.row0, last = touched.row1 - setup.row0;
 #if IRGS_GRID_AVX2
   if (simd_ == GridSimd::kAvx512 || simd_ == GridSimd::kAvx2) {
-    observed_cells_ +=
+    const std::uint64_t fresh =
         simd_ == GridSimd::kAvx512
-            ? applyConeRowsAvx512(rows, setup.row0, first, last, free_delta, occupied_delta, lo, hi)
-            : applyConeRowsAvx2(rows, setup.row0, first, last, free_delta, occupied_delta, lo, hi);
+            ? applyConeRowsAvx512(cone, setup, rows, touched, free_delta, occupied_delta, lo, hi)
+            : applyConeRowsAvx2(cone, setup, rows, touched, free_delta, occupied_delta, lo, hi);
+    observed_cells_ += fresh;
     noteTouched(touched);
     return;
   }
 #endif
   ConeUpdater updater(free_delta, occupied_delta, lo, hi);
-  for (int i = first; i <= last; ++i) {
-    if (rows.col0[i] > rows.col1[i])
+  ConeRow r;
+  for (int i = 0; i < rows.count; ++i) {
+    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+    if (c0 > c1)
       continue;
-    r = {setup.row0 + i, rows.col0[i], rows.col1[i], rows.free0[i], rows.free1[i]};
+    r = {setup.row0 + i, c0, c1, rows.f0(i), rows.f1(i)};
+    touchRow(touched, c0, c1, r.row);
     applyConeRow(r, updater);
   }
   observed_cells_ += updater.fresh();

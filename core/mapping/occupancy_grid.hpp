@@ -22,6 +22,8 @@ namespace irgs {
 
 struct ConeRow;           // core/mapping/sonar_cone.hpp
 struct ConeRowEstimates;  // core/mapping/sonar_cone_scan.hpp
+struct ConeScanSetup;     // core/mapping/sonar_cone_scan.hpp
+struct SonarCone;         // core/mapping/sonar_cone.hpp
 
 struct Cell {
   int col = 0;
@@ -187,12 +189,15 @@ class OccupancyGrid {
   // Applies one rasterised cone row (free and occupied increments, clamped to [lo, hi]).
   struct ConeUpdater;
   void applyConeRow(const ConeRow& row, ConeUpdater& updater);
-  // applyConeRow over rows [first, last] with AVX2 / AVX-512 (occupancy_grid.cpp; call only
-  // where gridSimdSupported says so). Return the cells that were unobserved.
-  std::uint64_t applyConeRowsAvx2(const ConeRowEstimates& rows, int row0, int first, int last,
-                                  float free_delta, float occupied_delta, float lo, float hi);
-  std::uint64_t applyConeRowsAvx512(const ConeRowEstimates& rows, int row0, int first, int last,
-                                    float free_delta, float occupied_delta, float lo, float hi);
+  // The cone update's row loop with AVX2 / AVX-512 (occupancy_grid.cpp; call only where
+  // gridSimdSupported says so): every row of `rows` (undecided ones scanned exactly first),
+  // `touched` extended by each non-empty one. Return the cells that were unobserved.
+  std::uint64_t applyConeRowsAvx2(const SonarCone& cone, const ConeScanSetup& setup,
+                                  ConeRowEstimates& rows, CellRect& touched, float free_delta,
+                                  float occupied_delta, float lo, float hi);
+  std::uint64_t applyConeRowsAvx512(const SonarCone& cone, const ConeScanSetup& setup,
+                                    ConeRowEstimates& rows, CellRect& touched, float free_delta,
+                                    float occupied_delta, float lo, float hi);
   // Tile (tx, ty), created if absent, through tile_slots_.
   float* slotTile(int tx, int ty);
   float* fillTileSlot(int tx, int ty);
@@ -242,7 +247,7 @@ class OccupancyGrid {
   // Scratch of integrateSonar (the row scan's per-row estimates), kept between calls so that a
   // cone update allocates nothing once warm. Not part of the grid's value: copies start with it
   // empty.
-  std::vector<int> scan_scratch_;
+  std::vector<double> scan_scratch_;
 };
 
 }  // namespace irgs

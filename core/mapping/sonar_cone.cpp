@@ -335,13 +335,24 @@ bool scanConeRowExact(const SonarCone& cone, const ConeScanSetup& s, int row, Co
 
 #if defined(__x86_64__) && defined(__GNUC__)
 __attribute__((target("avx2"))) void estimateConeRowsAvx2(const ConeScanSetup& s,
-                                                          std::vector<int>& storage,
+                                                          std::vector<double>& storage,
                                                           ConeRowEstimates& out) {
+  estimateConeRows(s, storage, out);
+}
+// 256-bit vectors like the AVX2 loop, but AVX-512's 32 vector registers: the loop's ~30
+// constants then stay in registers instead of being spilled.
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=256"))) void
+estimateConeRowsAvx512(const ConeScanSetup& s, std::vector<double>& storage,
+                       ConeRowEstimates& out) {
   estimateConeRows(s, storage, out);
 }
 #else
 // Never called: gridSimdSupported is false for AVX2 and AVX-512 here.
-void estimateConeRowsAvx2(const ConeScanSetup& s, std::vector<int>& storage,
+void estimateConeRowsAvx512(const ConeScanSetup& s, std::vector<double>& storage,
+                            ConeRowEstimates& out) {
+  estimateConeRows(s, storage, out);
+}
+void estimateConeRowsAvx2(const ConeScanSetup& s, std::vector<double>& storage,
                           ConeRowEstimates& out) {
   estimateConeRows(s, storage, out);
 }
@@ -354,7 +365,7 @@ void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRo
   rows.clear();
   const ConeScanSetup setup =
       makeConeScanSetup(cone, resolution_m, coneCellBounds(cone, resolution_m));
-  std::vector<int> storage;
+  std::vector<double> storage;
   ConeRowEstimates estimates;
   estimateConeRows(setup, storage, estimates, simd);
   ConeRow row;

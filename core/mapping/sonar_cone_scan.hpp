@@ -17,7 +17,6 @@
 // Either way a row's cells are exactly those SonarCone::classify() puts in the cone; the error
 // bounds that make step 1 exact are derived in makeConeScanSetup.
 
-#include <climits>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -58,19 +57,33 @@ ConeScanSetup makeConeScanSetup(const SonarCone& cone, double resolution_m,
 bool scanConeRowExact(const SonarCone& cone, const ConeScanSetup& setup, int row, ConeRow& out);
 
 // The result of step 1, one entry per bounding-box row (index row - row0): cells [col0, col1]
-// (none when col0 > col1), of which [free0, free1] are free (none when free0 > free1).
-// col0 == kUndecidedRow: the row needs scanConeRowExact.
-inline constexpr int kUndecidedRow = INT_MIN;
+// (none when col0 > col1), of which [free0, free1] are free (none when free0 > free1). Held as
+// doubles (exact integers): the estimate loop then works on 64-bit lanes only, which GCC
+// vectorises four rows to a 256-bit register without repacking (int outputs made it work on
+// eight rows at a time and spill). col0 == kUndecidedRow: the row needs scanConeRowExact.
+inline constexpr double kUndecidedRow = -0x1p40;  // no column is that far out
 struct ConeRowEstimates {
   int count = 0;
-  int* col0 = nullptr;
-  int* col1 = nullptr;
-  int* free0 = nullptr;
-  int* free1 = nullptr;
+  double* col0 = nullptr;
+  double* col1 = nullptr;
+  double* free0 = nullptr;
+  double* free1 = nullptr;
+
+  bool undecided(int i) const { return col0[i] == kUndecidedRow; }
+  int c0(int i) const { return static_cast<int>(col0[i]); }
+  int c1(int i) const { return static_cast<int>(col1[i]); }
+  int f0(int i) const { return static_cast<int>(free0[i]); }
+  int f1(int i) const { return static_cast<int>(free1[i]); }
+  void set(int i, int first, int last, int first_free, int last_free) {
+    col0[i] = first;
+    col1[i] = last;
+    free0[i] = first_free;
+    free1[i] = last_free;
+  }
 
   // Views `rows` rows of `storage`, grown when needed (kept by the caller between cones, so that
   // a warm scan allocates nothing).
-  void bind(std::vector<int>& storage, int rows) {
+  void bind(std::vector<double>& storage, int rows) {
     count = rows;
     const auto n = static_cast<std::size_t>(rows);
     if (storage.size() < 4 * n)
@@ -110,9 +123,9 @@ inline double mind(double a, double b) {
 // Step 1 for one combination of the cone's loop-invariant choices, so that the loop body has no
 // branch. All column arithmetic is on doubles (exact on integers this size) until the store.
 template <bool kRightUp, bool kLeftUp, bool kArc>
-IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, int* __restrict col0_out,
-                                   int* __restrict col1_out, int* __restrict free0_out,
-                                   int* __restrict free1_out) {
+IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, double* __restrict col0_out,
+                                   double* __restrict col1_out, double* __restrict free0_out,
+                                   double* __restrict free1_out) {
   const double lo = s.lo, hi = s.hi;
   const double lo_edge = lo - 1.5, hi_edge = hi + 1.5;
   const double row0 = s.row0;
@@ -154,11 +167,10 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, int* __restric
       fr0 = free_row ? maxd(c0, f0) : c0;
       fr1 = free_row ? mind(c1, f1) : c0 - 1.0;
     }
-    const int ic0 = static_cast<int>(c0);
-    col0_out[i] = !in_outer ? s.lo : decided ? ic0 : kUndecidedRow;
-    col1_out[i] = !in_outer ? s.lo - 1 : static_cast<int>(c1);
-    free0_out[i] = static_cast<int>(fr0);
-    free1_out[i] = static_cast<int>(fr1);
+    col0_out[i] = !in_outer ? lo : decided ? c0 : kUndecidedRow;
+    col1_out[i] = !in_outer ? lo - 1.0 : c1;
+    free0_out[i] = fr0;
+    free1_out[i] = fr1;
   }
 }
 
@@ -167,7 +179,7 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, int* __restric
 // Step 1 over the setup's bounding-box rows, into `out` bound to `storage`. With fast_edges false
 // every row is undecided. Forced inline so that estimateConeRowsAvx2 compiles the same loop for
 // AVX2.
-IRGS_SCAN_INLINE void estimateConeRows(const ConeScanSetup& s, std::vector<int>& storage,
+IRGS_SCAN_INLINE void estimateConeRows(const ConeScanSetup& s, std::vector<double>& storage,
                                        ConeRowEstimates& out) {
   using namespace cone_scan_detail;
   const int n = s.has_cells ? s.row1 - s.row0 + 1 : 0;
@@ -178,10 +190,10 @@ IRGS_SCAN_INLINE void estimateConeRows(const ConeScanSetup& s, std::vector<int>&
     return;
   }
   const int which = (s.right_up ? 4 : 0) | (s.left_up ? 2 : 0) | (s.has_arc ? 1 : 0);
-  int* const c0 = out.col0;
-  int* const c1 = out.col1;
-  int* const f0 = out.free0;
-  int* const f1 = out.free1;
+  double* const c0 = out.col0;
+  double* const c1 = out.col1;
+  double* const f0 = out.free0;
+  double* const f1 = out.free1;
   switch (which) {
     case 0:
       estimateRows<false, false, false>(s, n, c0, c1, f0, f1);
@@ -212,12 +224,16 @@ IRGS_SCAN_INLINE void estimateConeRows(const ConeScanSetup& s, std::vector<int>&
 
 // estimateConeRows vectorised for AVX2 (sonar_cone.cpp): the same operations on four rows at a
 // time, so the same results. Call only where gridSimdSupported says so.
-void estimateConeRowsAvx2(const ConeScanSetup& s, std::vector<int>& storage, ConeRowEstimates& out);
-inline void estimateConeRows(const ConeScanSetup& s, std::vector<int>& storage,
+void estimateConeRowsAvx2(const ConeScanSetup& s, std::vector<double>& storage,
+                          ConeRowEstimates& out);
+// The same with AVX-512 registers (still four rows at a time).
+void estimateConeRowsAvx512(const ConeScanSetup& s, std::vector<double>& storage,
+                            ConeRowEstimates& out);
+inline void estimateConeRows(const ConeScanSetup& s, std::vector<double>& storage,
                              ConeRowEstimates& out, GridSimd simd) {
-  // AVX-512 machines run the AVX2 loop: GCC's 512-bit version of it measured no faster than
-  // the SSE2 one (docs/performance.md).
-  if (simd == GridSimd::kAvx2 || simd == GridSimd::kAvx512)
+  if (simd == GridSimd::kAvx512)
+    estimateConeRowsAvx512(s, storage, out);
+  else if (simd == GridSimd::kAvx2)
     estimateConeRowsAvx2(s, storage, out);
   else
     estimateConeRows(s, storage, out);
@@ -227,15 +243,14 @@ inline void estimateConeRows(const ConeScanSetup& s, std::vector<int>& storage,
 // false when the row has no cell.
 inline bool coneRowAt(const SonarCone& cone, const ConeScanSetup& s, const ConeRowEstimates& est,
                       int i, ConeRow& out) {
-  const int c0 = est.col0[i];
-  if (c0 == kUndecidedRow) [[unlikely]]
+  if (est.undecided(i)) [[unlikely]]
     return scanConeRowExact(cone, s, s.row0 + i, out);
   out.row = s.row0 + i;
-  out.col0 = c0;
-  out.col1 = est.col1[i];
-  out.free0 = est.free0[i];
-  out.free1 = est.free1[i];
-  return c0 <= out.col1;
+  out.col0 = est.c0(i);
+  out.col1 = est.c1(i);
+  out.free0 = est.f0(i);
+  out.free1 = est.f1(i);
+  return out.col0 <= out.col1;
 }
 
 }  // namespace irgs
