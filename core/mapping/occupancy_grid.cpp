@@ -174,6 +174,11 @@ std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model
 }
 
 bool gridSimdSupported(GridSimd simd) {
+#if IRGS_GRID_AVX2
+  // Needed when this runs before libgcc's own constructor (a grid built during static
+  // initialisation); otherwise harmless.
+  __builtin_cpu_init();
+#endif
   switch (simd) {
     case GridSimd::kPortable:
       return true;
