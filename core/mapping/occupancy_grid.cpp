@@ -11,24 +11,35 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// The AVX2 path is compiled on x86-64 with GCC or Clang (function-level target attributes) and
+// used where the CPU has AVX2 (gridSimdSupported).
+#if defined(__x86_64__) && defined(__GNUC__)
+#define IRGS_GRID_AVX2 1
+#include <immintrin.h>
+#define IRGS_TARGET_AVX2 __attribute__((target("avx2")))
+#define IRGS_TARGET_AVX512 __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
+#else
+#define IRGS_GRID_AVX2 0
+#endif
 
 #include "core/mapping/sonar_cone.hpp"
+#include "core/mapping/sonar_cone_scan.hpp"
 
 // Storage (see docs/decisions/grid.md): 64x64-cell tiles of float log-odds, allocated on the
 // first write to any of their cells and found through a hash map on packed tile coordinates.
 // NaN marks a never-observed cell, so "observed" costs no extra memory and the update loop
 // learns it from the value it loads anyway. A cone update first scans the cone into rows (each
-// row: its cells and, within them, the free run; sonar_cone.cpp), prefetching each row's cells as
-// the row is found, and then updates each run of equal increments with SSE2 (RunUpdater); tiles
-// are looked up once per cone through a small table over the cone's tiles. The row and tile
-// buffers are kept between calls, so a warm update allocates nothing.
+// row: its cells and, within them, the free run; sonar_cone_scan.hpp, all rows at once,
+// vectorised), then updates each row's cells: with SSE2 by runs of equal increments (RunUpdater),
+// or with AVX2 / AVX-512 eight / sixteen cells a step where the CPU has them (chosen at run time,
+// the same bits). Tiles are found through a persistent direct-mapped cache in front of the hash
+// map (tile_slots_). The row and tile buffers are kept between calls, so a warm update allocates
+// nothing.
 
 #if defined(__GNUC__)
 #define IRGS_ALWAYS_INLINE __attribute__((always_inline))
-#define IRGS_PREFETCH_WRITE(p) __builtin_prefetch((p), 1, 3)
 #else
 #define IRGS_ALWAYS_INLINE
-#define IRGS_PREFETCH_WRITE(p) static_cast<void>(p)
 #endif
 
 namespace irgs {
@@ -162,6 +173,45 @@ std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model
   return std::nullopt;
 }
 
+bool gridSimdSupported(GridSimd simd) {
+#if IRGS_GRID_AVX2
+  // Needed when this runs before libgcc's own constructor (a grid built during static
+  // initialisation); otherwise harmless.
+  __builtin_cpu_init();
+#endif
+  switch (simd) {
+    case GridSimd::kPortable:
+      return true;
+    case GridSimd::kAvx2:
+#if IRGS_GRID_AVX2
+      return __builtin_cpu_supports("avx2");
+#else
+      return false;
+#endif
+    case GridSimd::kAvx512:
+#if IRGS_GRID_AVX2
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+#else
+      return false;
+#endif
+  }
+  return false;
+}
+
+GridSimd bestGridSimd() {
+  static const GridSimd best = gridSimdSupported(GridSimd::kAvx512) ? GridSimd::kAvx512
+                               : gridSimdSupported(GridSimd::kAvx2) ? GridSimd::kAvx2
+                                                                    : GridSimd::kPortable;
+  return best;
+}
+
+void OccupancyGrid::setSimd(GridSimd simd) {
+  if (!gridSimdSupported(simd))
+    throw std::invalid_argument("OccupancyGrid::setSimd: instruction set not supported here");
+  simd_ = simd;
+}
+
 OccupancyGrid::OccupancyGrid(double resolution_m) : resolution_m_(resolution_m) {
   if (!std::isfinite(resolution_m) || !(resolution_m > 0.0))
     throw std::invalid_argument("OccupancyGrid: resolution_m must be finite and > 0, got " +
@@ -170,6 +220,7 @@ OccupancyGrid::OccupancyGrid(double resolution_m) : resolution_m_(resolution_m) 
 
 OccupancyGrid::OccupancyGrid(const OccupancyGrid& other)
     : resolution_m_(other.resolution_m_),
+      simd_(other.simd_),
       cell_updates_(other.cell_updates_),
       observed_cells_(other.observed_cells_),
       observed_rect_(other.observed_rect_),
@@ -180,12 +231,14 @@ OccupancyGrid::OccupancyGrid(const OccupancyGrid& other)
 OccupancyGrid& OccupancyGrid::operator=(const OccupancyGrid& other) {
   if (this != &other) {
     resolution_m_ = other.resolution_m_;
+    simd_ = other.simd_;
     cell_updates_ = other.cell_updates_;
     observed_cells_ = other.observed_cells_;
     observed_rect_ = other.observed_rect_;
     dirty_rect_ = other.dirty_rect_;
     tiles_ = other.tiles_;
     tile_index_ = other.tile_index_;
+    tile_slots_.clear();  // they point into the old tiles (reused buffers, other tiles)
   }
   return *this;
 }
@@ -194,6 +247,7 @@ OccupancyGrid::~OccupancyGrid() = default;
 
 OccupancyGrid::OccupancyGrid(OccupancyGrid&& other) noexcept
     : resolution_m_(other.resolution_m_),
+      simd_(other.simd_),
       cell_updates_(std::exchange(other.cell_updates_, 0)),
       observed_cells_(std::exchange(other.observed_cells_, 0)),
       observed_rect_(std::exchange(other.observed_rect_, CellRect{})),
@@ -202,11 +256,13 @@ OccupancyGrid::OccupancyGrid(OccupancyGrid&& other) noexcept
       tile_index_(std::move(other.tile_index_)) {
   other.tiles_.clear();
   other.tile_index_.clear();
+  other.tile_slots_.clear();
 }
 
 OccupancyGrid& OccupancyGrid::operator=(OccupancyGrid&& other) noexcept {
   if (this != &other) {
     resolution_m_ = other.resolution_m_;
+    simd_ = other.simd_;
     cell_updates_ = std::exchange(other.cell_updates_, 0);
     observed_cells_ = std::exchange(other.observed_cells_, 0);
     observed_rect_ = std::exchange(other.observed_rect_, CellRect{});
@@ -215,6 +271,8 @@ OccupancyGrid& OccupancyGrid::operator=(OccupancyGrid&& other) noexcept {
     tile_index_ = std::move(other.tile_index_);
     other.tiles_.clear();
     other.tile_index_.clear();
+    tile_slots_.clear();
+    other.tile_slots_.clear();
   }
   return *this;
 }
@@ -242,7 +300,7 @@ bool OccupancyGrid::isAddressable(const Vec2& p, double margin_m) const {
          (std::abs(p.y()) + margin_m) / resolution_m_ < limit;
 }
 
-OccupancyGrid::TileKey OccupancyGrid::tileKey(int tx, int ty) {
+IRGS_ALWAYS_INLINE inline OccupancyGrid::TileKey OccupancyGrid::tileKey(int tx, int ty) {
   return (static_cast<TileKey>(static_cast<std::uint32_t>(tx)) << 32) |
          static_cast<TileKey>(static_cast<std::uint32_t>(ty));
 }
@@ -279,15 +337,20 @@ bool OccupancyGrid::observed(const Cell& c) const {
          !std::isnan(tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)]);
 }
 
-IRGS_ALWAYS_INLINE inline float* OccupancyGrid::cachedTile(int tx, int ty) {
-  // Tile buffers never move (tiles_ holds them by vector, and growing the outer vector moves the
-  // inner ones with their buffers), so the pointers stay valid for the whole cone.
-  float*& slot = tile_cache_[static_cast<std::size_t>(ty - cache_ty0_) *
-                                 static_cast<std::size_t>(cache_width_) +
-                             static_cast<std::size_t>(tx - cache_tx0_)];
-  if (slot == nullptr)
-    slot = findOrCreateTile(tx, ty);
-  return slot;
+IRGS_ALWAYS_INLINE inline float* OccupancyGrid::slotTile(int tx, int ty) {
+  const TileSlot& slot = tile_slots_[static_cast<std::size_t>(
+      ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
+  if (slot.key == tileKey(tx, ty)) [[likely]]
+    return slot.tile;
+  return fillTileSlot(tx, ty);
+}
+
+float* OccupancyGrid::fillTileSlot(int tx, int ty) {
+  TileSlot& slot = tile_slots_[static_cast<std::size_t>(((ty & kTileSlotMask) << kTileSlotShift) |
+                                                        (tx & kTileSlotMask))];
+  slot.tile = findOrCreateTile(tx, ty);
+  slot.key = tileKey(tx, ty);
+  return slot.tile;
 }
 
 void OccupancyGrid::noteTouched(const CellRect& cells) {
@@ -306,7 +369,7 @@ IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, Con
     const int tx = col >> kTileShift;
     const int base = tx * kTileSize;
     const int run_end = std::min(r.col1, base + kTileMask);
-    float* cells = cachedTile(tx, ty) + row_offset;
+    float* cells = slotTile(tx, ty) + row_offset;
     // The free run of this piece; empty (f0 > f1) when the row has none or it lies elsewhere.
     const int f0 = std::max(col, r.free0);
     const int f1 = std::min(run_end, r.free1);
@@ -324,29 +387,6 @@ IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, Con
   cell_updates_ += static_cast<std::uint64_t>(r.col1 - r.col0 + 1);
 }
 
-IRGS_ALWAYS_INLINE inline void OccupancyGrid::prefetchConeRow(const ConeRow& r) {
-  const int ty = r.row >> kTileShift;
-  const int row_offset = (r.row & kTileMask) * kTileSize;
-  for (int col = r.col0; col <= r.col1;) {
-    const int tx = col >> kTileShift;
-    const int base = tx * kTileSize;
-    const int run_end = std::min(r.col1, base + kTileMask);
-    const float* first = cachedTile(tx, ty) + row_offset + (col - base);
-    const float* last = first + (run_end - col);
-    // The first and last 64-byte lines of [first, last]: the hardware prefetcher follows the
-    // stream between them once it has started (prefetching every line cost more than it saved).
-    IRGS_PREFETCH_WRITE(first);
-    IRGS_PREFETCH_WRITE(last);
-    col = run_end + 1;
-  }
-}
-
-struct OccupancyGrid::RowPrefetcher final : ConeRowObserver {
-  explicit RowPrefetcher(OccupancyGrid& g) : grid(g) {}
-  void rowFound(const ConeRow& row) override { grid.prefetchConeRow(row); }
-  OccupancyGrid& grid;
-};
-
 void OccupancyGrid::applyCell(int col, int row, float delta, float lo, float hi) {
   float* tile = findOrCreateTile(col >> kTileShift, row >> kTileShift);
   float& cell = tile[(row & kTileMask) * kTileSize + (col & kTileMask)];
@@ -356,6 +396,194 @@ void OccupancyGrid::applyCell(int col, int row, float delta, float lo, float hi)
   ++cell_updates_;
   noteTouched({col, row, col, row});
 }
+
+namespace {
+
+// Row i of `rows` as final cells (the exact scan when the estimates left it undecided); returns
+// its first cell, > col1[i] when it has none.
+IRGS_ALWAYS_INLINE inline int finalRow(const SonarCone& cone, const ConeScanSetup& setup,
+                                       ConeRowEstimates& rows, int i) {
+  if (rows.undecided(i)) [[unlikely]] {
+    ConeRow r;
+    if (coneRowAt(cone, setup, rows, i, r))
+      rows.set(i, r.col0, r.col1, r.free0, r.free1);
+    else
+      rows.set(i, 0, -1, 0, -1);
+  }
+  return rows.c0(i);
+}
+
+// Extends the cone's touched rectangle by a non-empty row (rows come ascending).
+IRGS_ALWAYS_INLINE inline void touchRow(OccupancyGrid::CellRect& touched, int c0, int c1, int row) {
+  if (touched.empty()) {
+    touched = {c0, row, c1, row};
+    return;
+  }
+  touched.col0 = std::min(touched.col0, c0);
+  touched.col1 = std::max(touched.col1, c1);
+  touched.row1 = row;
+}
+
+}  // namespace
+
+#if IRGS_GRID_AVX2
+namespace {
+
+// The update of cells [a, b] of one tile row (0 <= a <= b < kTileSize), [f0, f1] of them free
+// (none when f0 > f1), eight at a time: every group of eight aligned within the row that meets
+// [a, b] is loaded, updated per lane with the free or occupied increment, and stored with the
+// lanes outside [a, b] unchanged. The per-lane operations are RunUpdater's (updatedCell(), bit
+// for bit), so the result does not depend on the path.
+struct Avx2Cells {
+  __m256 free_delta, occupied_delta, lo, hi;
+  __m256i iota;
+  __m256i fresh;  // per lane, the cells that were unobserved
+
+  IRGS_TARGET_AVX2 IRGS_ALWAYS_INLINE void piece(float* row, int a, int b, int f0, int f1) {
+    const __m256i before_a = _mm256_set1_epi32(a - 1);
+    const __m256i after_b = _mm256_set1_epi32(b + 1);
+    const __m256i before_f = _mm256_set1_epi32(f0 - 1);
+    const __m256i after_f = _mm256_set1_epi32(f1 + 1);
+    for (int g = a & ~7; g <= b; g += 8) {
+      const __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(g), iota);
+      const __m256 in = _mm256_castsi256_ps(
+          _mm256_and_si256(_mm256_cmpgt_epi32(idx, before_a), _mm256_cmpgt_epi32(after_b, idx)));
+      const __m256 free = _mm256_castsi256_ps(
+          _mm256_and_si256(_mm256_cmpgt_epi32(idx, before_f), _mm256_cmpgt_epi32(after_f, idx)));
+      const __m256 delta = _mm256_blendv_ps(occupied_delta, free_delta, free);
+      const __m256 v = _mm256_loadu_ps(row + g);
+      const __m256 unknown = _mm256_cmp_ps(v, v, _CMP_UNORD_Q);
+      // (unknown ? 0 : v) + delta, then std::max(s, lo) = maxps(lo, s), std::min(m, hi) =
+      // minps(hi, m), as in RunUpdater.
+      const __m256 sum = _mm256_add_ps(_mm256_andnot_ps(unknown, v), delta);
+      const __m256 n = _mm256_min_ps(hi, _mm256_max_ps(lo, sum));
+      _mm256_storeu_ps(row + g, _mm256_blendv_ps(v, n, in));
+      fresh = _mm256_sub_epi32(fresh, _mm256_castps_si256(_mm256_and_ps(unknown, in)));
+    }
+  }
+};
+
+}  // namespace
+
+IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
+    const SonarCone& cone, const ConeScanSetup& setup, ConeRowEstimates& rows, CellRect& touched,
+    float free_delta, float occupied_delta, float lo, float hi) {
+  Avx2Cells u{_mm256_set1_ps(free_delta),
+              _mm256_set1_ps(occupied_delta),
+              _mm256_set1_ps(lo),
+              _mm256_set1_ps(hi),
+              _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+              _mm256_setzero_si256()};
+  std::uint64_t updates = 0;
+  for (int i = 0; i < rows.count; ++i) {
+    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+    if (c0 > c1)
+      continue;
+    const int row = setup.row0 + i;
+    const int f0 = rows.f0(i), f1 = rows.f1(i);
+    touchRow(touched, c0, c1, row);
+    const int ty = row >> kTileShift;
+    const int row_offset = (row & kTileMask) * kTileSize;
+    for (int col = c0; col <= c1;) {
+      const int tx = col >> kTileShift;
+      const int base = tx * kTileSize;
+      const int run_end = std::min(c1, base + kTileMask);
+      u.piece(slotTile(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
+      col = run_end + 1;
+    }
+    updates += static_cast<std::uint64_t>(c1 - c0 + 1);
+  }
+  cell_updates_ += updates;
+  alignas(32) std::uint32_t lanes[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), u.fresh);
+  std::uint64_t fresh = 0;
+  for (const std::uint32_t n : lanes)
+    fresh += n;
+  return fresh;
+}
+
+namespace {
+
+// GCC 12 warns inside its own _mm512_max_ps / _mm512_min_ps (_mm512_undefined_ps as the
+// pass-through operand of an unmasked operation): a false positive.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+// Avx2Cells with sixteen lanes and mask registers: cells outside [a, b] are neither loaded nor
+// stored. An unobserved cell becomes 0 + delta exactly as in updatedCell() (the sum is formed,
+// not assumed equal to delta: 0 + -0 is +0).
+struct Avx512Cells {
+  __m512 free_delta, occupied_delta, free_from_zero, occupied_from_zero, lo, hi;
+  __m512i iota;
+  std::uint64_t fresh = 0;
+
+  IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE void piece(float* row, int a, int b, int f0, int f1) {
+    // Locals, so that the loop keeps them in registers.
+    const __m512 free_d = free_delta, occupied_d = occupied_delta;
+    const __m512 free_z = free_from_zero, occupied_z = occupied_from_zero;
+    const __m512 low = lo, high = hi;
+    const __m512i lanes = iota;
+    std::uint64_t count = 0;
+    const __m512i va = _mm512_set1_epi32(a), vb = _mm512_set1_epi32(b);
+    const __m512i vf0 = _mm512_set1_epi32(f0), vf1 = _mm512_set1_epi32(f1);
+    for (int g = a & ~15; g <= b; g += 16) {
+      const __m512i idx = _mm512_add_epi32(_mm512_set1_epi32(g), lanes);
+      const __mmask16 in = _mm512_mask_cmple_epi32_mask(_mm512_cmpge_epi32_mask(idx, va), idx, vb);
+      const __mmask16 free =
+          _mm512_mask_cmple_epi32_mask(_mm512_mask_cmpge_epi32_mask(in, idx, vf0), idx, vf1);
+      const __m512 delta = _mm512_mask_blend_ps(free, occupied_d, free_d);
+      const __m512 from_zero = _mm512_mask_blend_ps(free, occupied_z, free_z);
+      const __m512 v = _mm512_maskz_loadu_ps(in, row + g);
+      const __mmask16 unknown = _mm512_mask_cmp_ps_mask(in, v, v, _CMP_UNORD_Q);
+      const __m512 sum = _mm512_mask_add_ps(from_zero, _knot_mask16(unknown), v, delta);
+      const __m512 n = _mm512_min_ps(high, _mm512_max_ps(low, sum));
+      _mm512_mask_storeu_ps(row + g, in, n);
+      count += static_cast<std::uint64_t>(__builtin_popcount(_cvtmask16_u32(unknown)));
+    }
+    fresh += count;
+  }
+};
+
+}  // namespace
+
+IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
+    const SonarCone& cone, const ConeScanSetup& setup, ConeRowEstimates& rows, CellRect& touched,
+    float free_delta, float occupied_delta, float lo, float hi) {
+  const __m512 zero = _mm512_setzero_ps();
+  Avx512Cells u{_mm512_set1_ps(free_delta),
+                _mm512_set1_ps(occupied_delta),
+                _mm512_add_ps(zero, _mm512_set1_ps(free_delta)),
+                _mm512_add_ps(zero, _mm512_set1_ps(occupied_delta)),
+                _mm512_set1_ps(lo),
+                _mm512_set1_ps(hi),
+                _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)};
+  std::uint64_t updates = 0;
+  for (int i = 0; i < rows.count; ++i) {
+    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+    if (c0 > c1)
+      continue;
+    const int row = setup.row0 + i;
+    const int f0 = rows.f0(i), f1 = rows.f1(i);
+    touchRow(touched, c0, c1, row);
+    const int ty = row >> kTileShift;
+    const int row_offset = (row & kTileMask) * kTileSize;
+    for (int col = c0; col <= c1;) {
+      const int tx = col >> kTileShift;
+      const int base = tx * kTileSize;
+      const int run_end = std::min(c1, base + kTileMask);
+      u.piece(slotTile(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
+      col = run_end + 1;
+    }
+    updates += static_cast<std::uint64_t>(c1 - c0 + 1);
+  }
+  cell_updates_ += updates;
+  return u.fresh;
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#endif
 
 namespace {
 
@@ -392,31 +620,39 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
                                    double range_m, bool echo, const SonarInverseModel& model) {
   const SonarCone cone =
       checkedCone(*this, origin, heading_rad, beam_width_rad, range_m, echo, model);
-  // The cells of a cone are scattered over a cache line or two per row, and the grid (4 bytes a
-  // cell) is larger than L2: each row is a cache miss the hardware prefetcher cannot foresee, so
-  // the update was bound by memory latency. Each row's lines are requested as soon as the scan
-  // finds the row, so that the fetches overlap the rest of the scan and one another. The tile
-  // table therefore covers the cone's bounding box (a superset of the cells it touches).
-  const CellRect bounds = coneCellBounds(cone, resolution_m_);
-  cache_tx0_ = bounds.col0 >> kTileShift;
-  cache_ty0_ = bounds.row0 >> kTileShift;
-  cache_width_ = (bounds.col1 >> kTileShift) - cache_tx0_ + 1;
-  const int cache_height = (bounds.row1 >> kTileShift) - cache_ty0_ + 1;
-  tile_cache_.assign(
-      static_cast<std::size_t>(cache_width_) * static_cast<std::size_t>(cache_height), nullptr);
-  RowPrefetcher prefetcher(*this);
-  scanConeRows(cone, resolution_m_, scratch_rows_, &prefetcher);
-  if (scratch_rows_.empty())
+  const ConeScanSetup setup =
+      makeConeScanSetup(cone, resolution_m_, coneCellBounds(cone, resolution_m_));
+  ConeRowEstimates rows;
+  estimateConeRows(setup, scan_scratch_, rows, simd_);
+  if (tile_slots_.empty())
+    tile_slots_.assign(static_cast<std::size_t>(kTileSlots), TileSlot{});
+  // Rows the estimates left undecided are scanned exactly on the way. (The previous version
+  // prefetched each row's first and last cache line; on this scan's row order the hardware
+  // prefetchers do better: 7-15 % faster without.)
+  CellRect touched;
+  const auto free_delta = static_cast<float>(model.free_log_odds);
+  const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
+  const auto lo = static_cast<float>(model.clamp_min);
+  const auto hi = static_cast<float>(model.clamp_max);
+#if IRGS_GRID_AVX2
+  if (simd_ == GridSimd::kAvx512 || simd_ == GridSimd::kAvx2) {
+    const std::uint64_t fresh =
+        simd_ == GridSimd::kAvx512
+            ? applyConeRowsAvx512(cone, setup, rows, touched, free_delta, occupied_delta, lo, hi)
+            : applyConeRowsAvx2(cone, setup, rows, touched, free_delta, occupied_delta, lo, hi);
+    observed_cells_ += fresh;
+    noteTouched(touched);
     return;
-  // Rows come ascending.
-  CellRect touched{std::numeric_limits<int>::max(), scratch_rows_.front().row,
-                   std::numeric_limits<int>::min(), scratch_rows_.back().row};
-  ConeUpdater updater(static_cast<float>(model.free_log_odds),
-                      static_cast<float>(model.occupied_log_odds),
-                      static_cast<float>(model.clamp_min), static_cast<float>(model.clamp_max));
-  for (const ConeRow& r : scratch_rows_) {
-    touched.col0 = std::min(touched.col0, r.col0);
-    touched.col1 = std::max(touched.col1, r.col1);
+  }
+#endif
+  ConeUpdater updater(free_delta, occupied_delta, lo, hi);
+  ConeRow r;
+  for (int i = 0; i < rows.count; ++i) {
+    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+    if (c0 > c1)
+      continue;
+    r = {setup.row0 + i, c0, c1, rows.f0(i), rows.f1(i)};
+    touchRow(touched, c0, c1, r.row);
     applyConeRow(r, updater);
   }
   observed_cells_ += updater.fresh();

@@ -7,7 +7,9 @@
 // sparse set of 64x64-cell tiles allocated on first write (docs/decisions/grid.md says why).
 // The grid is a plain value: copies are deep and independent.
 
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -18,7 +20,10 @@
 
 namespace irgs {
 
-struct ConeRow;  // core/mapping/sonar_cone.hpp
+struct ConeRow;           // core/mapping/sonar_cone.hpp
+struct ConeRowEstimates;  // core/mapping/sonar_cone_scan.hpp
+struct ConeScanSetup;     // core/mapping/sonar_cone_scan.hpp
+struct SonarCone;         // core/mapping/sonar_cone.hpp
 
 struct Cell {
   int col = 0;
@@ -43,6 +48,17 @@ struct SonarInverseModel {
 // clamp_max), or nothing when it is usable.
 std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model);
 
+// Instruction sets a cone update can use. kPortable (SSE2 on x86-64, plain C++ elsewhere) runs
+// everywhere; kAvx2 (8 floats / 4 doubles a step) and kAvx512 (16 floats / 8 doubles, masked
+// loads and stores; AVX-512 F, BW, DQ and VL) where the CPU has them, chosen at run time. They
+// give bit-identical grids: every cell and every row boundary goes through the same IEEE
+// operations, only more lanes at a time (tests run each one the machine supports against the
+// per-cell reference).
+enum class GridSimd : std::uint8_t { kPortable, kAvx2, kAvx512 };
+bool gridSimdSupported(GridSimd simd);
+// The widest supported one, the default of every grid.
+GridSimd bestGridSimd();
+
 class OccupancyGrid {
  public:
   // Cell indices are kept within +-kMaxCellIndex so index arithmetic never overflows
@@ -63,6 +79,12 @@ class OccupancyGrid {
   OccupancyGrid& operator=(OccupancyGrid&& other) noexcept;
 
   double resolution_m() const { return resolution_m_; }
+
+  // The instruction set integrateSonar uses (bestGridSimd() unless set; copies keep it). Throws
+  // std::invalid_argument when the CPU does not support `simd`. For tests and benchmarks: the
+  // results do not depend on it.
+  void setSimd(GridSimd simd);
+  GridSimd simd() const { return simd_; }
 
   // Cell containing p. Cells exist everywhere: the grid grows when written. Throws
   // std::out_of_range when p is not finite or beyond +-kMaxCellIndex cells.
@@ -164,31 +186,68 @@ class OccupancyGrid {
   static TileKey tileKey(int tx, int ty);
   const float* findTile(int tx, int ty) const;
   float* findOrCreateTile(int tx, int ty);
-  // Applies one rasterised cone row (free and occupied increments, clamped to [lo, hi]). The
-  // tile of each run of cells comes from tile_cache_, a table over the cone's tiles filled on
-  // first use, so that no run costs a hash lookup.
+  // Applies one rasterised cone row (free and occupied increments, clamped to [lo, hi]).
   struct ConeUpdater;
   void applyConeRow(const ConeRow& row, ConeUpdater& updater);
-  // Requests the cache lines of a cone row ahead of its update; RowPrefetcher calls it for each
-  // row while the cone is being scanned.
-  void prefetchConeRow(const ConeRow& row);
-  struct RowPrefetcher;
-  float* cachedTile(int tx, int ty);
+  // The cone update's row loop with AVX2 / AVX-512 (occupancy_grid.cpp; call only where
+  // gridSimdSupported says so): every row of `rows` (undecided ones scanned exactly first),
+  // `touched` extended by each non-empty one. Return the cells that were unobserved.
+  std::uint64_t applyConeRowsAvx2(const SonarCone& cone, const ConeScanSetup& setup,
+                                  ConeRowEstimates& rows, CellRect& touched, float free_delta,
+                                  float occupied_delta, float lo, float hi);
+  std::uint64_t applyConeRowsAvx512(const SonarCone& cone, const ConeScanSetup& setup,
+                                    ConeRowEstimates& rows, CellRect& touched, float free_delta,
+                                    float occupied_delta, float lo, float hi);
+  // Tile (tx, ty), created if absent, through tile_slots_.
+  float* slotTile(int tx, int ty);
+  float* fillTileSlot(int tx, int ty);
   void applyCell(int col, int row, float delta, float lo, float hi);
   void noteTouched(const CellRect& cells);
 
   double resolution_m_;
+  GridSimd simd_ = bestGridSimd();
   std::uint64_t cell_updates_ = 0;
   std::uint64_t observed_cells_ = 0;
   CellRect observed_rect_;
   CellRect dirty_rect_;
-  std::vector<std::vector<float>> tiles_;
+  // Tile buffers start on a cache line (64 bytes): a tile row (256 bytes) is then four whole
+  // lines, and no 32- or 64-byte access of the vectorised cone update straddles two of them.
+  template <class T>
+  struct CacheLineAllocator {
+    using value_type = T;
+    CacheLineAllocator() = default;
+    template <class U>
+    CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+      return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64}));
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+      ::operator delete (p, n * sizeof(T), std::align_val_t{64});
+    }
+    friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
+  };
+  std::vector<std::vector<float, CacheLineAllocator<float>>> tiles_;
   std::unordered_map<TileKey, std::uint32_t> tile_index_;
-  // Scratch of integrateSonar, kept between calls so that a cone update allocates nothing once
-  // warm. Not part of the grid's value: copies start with it empty.
-  std::vector<ConeRow> scratch_rows_;
-  std::vector<float*> tile_cache_;
-  int cache_tx0_ = 0, cache_ty0_ = 0, cache_width_ = 0;
+  // A direct-mapped cache of tile pointers in front of tile_index_: kTileSlots entries indexed by
+  // the low bits of (tx, ty), so that a cone's runs find their tiles without hashing (a 20 m x
+  // 20 m window at 1 cm maps without collisions; beyond it a collision costs a hash lookup).
+  // Tile buffers never move (tiles_ holds them by vector, and growing the outer vector moves the
+  // inner ones with their buffers), so the pointers stay valid until tiles_ is replaced: copies,
+  // assignments and moves empty the cache. Allocated on the first cone. Not part of the grid's
+  // value.
+  struct TileSlot {
+    TileKey key = kNoTile;
+    float* tile = nullptr;
+  };
+  static constexpr TileKey kNoTile = TileKey{1} << 63;  // tx = INT_MIN: no tile has it
+  static constexpr int kTileSlotShift = 5;
+  static constexpr int kTileSlotMask = (1 << kTileSlotShift) - 1;
+  static constexpr int kTileSlots = 1 << (2 * kTileSlotShift);
+  std::vector<TileSlot> tile_slots_;
+  // Scratch of integrateSonar (the row scan's per-row estimates), kept between calls so that a
+  // cone update allocates nothing once warm. Not part of the grid's value: copies start with it
+  // empty.
+  std::vector<double> scan_scratch_;
 };
 
 }  // namespace irgs

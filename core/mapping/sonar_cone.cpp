@@ -3,20 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "core/mapping/sonar_cone_scan.hpp"
 
 // This file is compiled with -ffp-contract=off (core/mapping/CMakeLists.txt): the rasteriser
 // and classify() must round every expression identically, which a fused multiply-add in one
-// place and not the other would break.
-
-#if defined(__GNUC__)
-#define IRGS_ALWAYS_INLINE __attribute__((always_inline))
-#else
-#define IRGS_ALWAYS_INLINE
-#endif
+// place and not the other would break. The common case of the row scan is in
+// sonar_cone_scan.hpp (vectorised across rows); this file holds the exact per-row path.
 
 namespace irgs {
 namespace {
@@ -98,45 +92,6 @@ int clampedFloor(double v) {
   const double limit = static_cast<double>(OccupancyGrid::kMaxCellIndex) + 2.0;
   return static_cast<int>(std::clamp(std::floor(v), -limit, limit));
 }
-
-// floor(x) clamped to [lo - 2, hi + 1] (callers treat anything below lo as "none"). Clears
-// `decided` unless x is further than `margin` (< 0.5) from every integer (NaN never is): then a
-// boundary estimated at x with an error under margin lies between the same two cell centres as the
-// true one, and the criterion need not be evaluated. Branch free, and without an int round trip
-// on the way to the decision: x, clamped to +-1.5 beyond the box (so that |x| < 2^51), is rounded
-// to the nearest integer r by adding and subtracting 1.5 * 2^52, and x - r is exact.
-inline int floorDecided(double x, int lo, int hi, double margin, bool& decided) {
-  constexpr double kRound = 6755399441055744.0;  // 1.5 * 2^52
-  const double lo_edge = static_cast<double>(lo) - 1.5;
-  const double hi_edge = static_cast<double>(hi) + 1.5;
-  double c = x > lo_edge ? x : lo_edge;  // NaN gives lo_edge...
-  c = c < hi_edge ? c : hi_edge;
-  const double r = (c + kRound) - kRound;
-  const double d = c - r;                        // in [-0.5, 0.5]
-  decided &= (std::abs(d) > margin) & (x == x);  // ...and is not decided
-  return static_cast<int>(r) - static_cast<int>(d < 0.0);
-}
-
-#if defined(__SSE2__)
-// floorDecided on two lanes: the same operations (max/min keep the scalar NaN behaviour: a NaN
-// first operand yields the second), results k0 (lane 0) and k1 (lane 1). lo_edge and hi_edge are
-// lo - 1.5 and hi + 1.5.
-inline void floorDecided2(__m128d x, __m128d margin, __m128d lo_edge, __m128d hi_edge, int& k0,
-                          int& k1, bool& decided) {
-  const __m128d round = _mm_set1_pd(6755399441055744.0);  // 1.5 * 2^52
-  const __m128d c = _mm_min_pd(_mm_max_pd(x, lo_edge), hi_edge);
-  const __m128d r = _mm_sub_pd(_mm_add_pd(c, round), round);
-  const __m128d d = _mm_sub_pd(c, r);
-  const __m128d abs_d = _mm_andnot_pd(_mm_set1_pd(-0.0), d);
-  const __m128d ok = _mm_and_pd(_mm_cmpgt_pd(abs_d, margin), _mm_cmpord_pd(x, x));
-  decided &= _mm_movemask_pd(ok) == 3;
-  const __m128d floored =
-      _mm_sub_pd(r, _mm_and_pd(_mm_cmplt_pd(d, _mm_setzero_pd()), _mm_set1_pd(1.0)));
-  const __m128i k = _mm_cvttpd_epi32(floored);
-  k0 = _mm_cvtsi128_si32(k);
-  k1 = _mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1));
-}
-#endif
 
 }  // namespace
 
@@ -222,37 +177,38 @@ OccupancyGrid::CellRect coneCellBounds(const SonarCone& cone, double resolution_
   return rect;
 }
 
-void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows) {
-  scanConeRows(cone, resolution_m, rows, nullptr);
-}
-
-void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows,
-                  ConeRowObserver* observer) {
-  rows.clear();
-  if (!cone.has_arc && !(cone.free_radius2 > 0.0))
-    return;  // nothing can satisfy |d|^2 < 0
-  const OccupancyGrid::CellRect bounds = coneCellBounds(cone, resolution_m);
-  const double ox = cone.apex.x(), oy = cone.apex.y();
-  const double res = resolution_m;
-  const double inv_res = 1.0 / res;
-  const int lo = bounds.col0, hi = bounds.col1;
-  const auto dxOf = [&](int col) { return cellCentreCoordinate(col, res) - ox; };
+ConeScanSetup makeConeScanSetup(const SonarCone& cone, double resolution_m,
+                                const OccupancyGrid::CellRect& bounds) {
+  ConeScanSetup s;
+  s.has_cells = cone.has_arc || cone.free_radius2 > 0.0;  // nothing satisfies |d|^2 < 0
+  s.row0 = bounds.row0;
+  s.row1 = bounds.row1;
+  s.lo = bounds.col0;
+  s.hi = bounds.col1;
+  const double ox = cone.apex.x();
+  s.oy = cone.apex.y();
+  s.res = resolution_m;
+  s.inv_res = 1.0 / resolution_m;
   // Estimates only (the criterion decides): fractional column index of x = ox + dx, the centre
   // of column c being at (c + 0.5) * res.
-  const double apex_col = ox * inv_res - 0.5;
+  s.apex_col = ox * s.inv_res - 0.5;
 
   // Along a row |d|^2 falls while dx < 0 and rises from the first column with dx >= 0 (rounding
   // is monotone), so each disc is one interval, searched on either side of that column. dx does
   // not depend on the row: one search per cone.
-  const int split =
-      firstTrue(lo, hi, ceilGuess(apex_col, lo, hi), [&](int col) { return dxOf(col) >= 0.0; });
+  const int lo = s.lo, hi = s.hi;
+  s.split = firstTrue(lo, hi, ceilGuess(s.apex_col, lo, hi),
+                      [&](int col) { return cellCentreCoordinate(col, resolution_m) - ox >= 0.0; });
 
   // The two edge tests are monotone along a row, their direction set by the sign of the edge's y
   // component; the edge crosses the row at column apex_col + dy * ux / (uy * res).
   const Vec2& ur = cone.right_edge;
   const Vec2& ul = cone.left_edge;
-  const double right_slope = ur.y() != 0.0 ? ur.x() / ur.y() * inv_res : 0.0;
-  const double left_slope = ul.y() != 0.0 ? ul.x() / ul.y() * inv_res : 0.0;
+  s.right_slope = ur.y() != 0.0 ? ur.x() / ur.y() * s.inv_res : 0.0;
+  s.left_slope = ul.y() != 0.0 ? ul.x() / ul.y() * s.inv_res : 0.0;
+  s.right_up = ur.y() > 0.0;
+  s.left_up = ul.y() > 0.0;
+  s.fast_edges = ur.y() != 0.0 && ul.y() != 0.0;
 
   // Error bounds, in columns, of the boundary estimates against the criterion evaluated in
   // floating point (the criterion is exact real arithmetic on the same double inputs up to these
@@ -262,195 +218,172 @@ void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRo
   // A disc test |d|^2 < r^2 is off by <= 7 eps M R, i.e. <= 4 eps M R / (h res) columns where the
   // half chord is h metres; its estimate by <= 6 eps M R / (h res) + eps M / res. Each bound
   // below carries a further factor of 8. An estimate further than its bound from every cell
-  // centre is the boundary itself (floorDecided); otherwise the criterion is evaluated there.
-  const double big_m = std::abs(ox) + std::abs(oy) + cone.outerRadius() + 4.0 * res;
+  // centre is the boundary itself (estimateConeRows); otherwise the criterion is evaluated there.
+  const double res = resolution_m;
+  const double big_m = std::abs(ox) + std::abs(s.oy) + cone.outerRadius() + 4.0 * res;
   // The last rounding of an estimate, |x| <= max(|lo|, |hi|) + 2 where it matters.
   const double position_err = 16.0 * kEps * (std::max(std::abs(lo), std::abs(hi)) + 4.0);
-  const double right_err =
-      ur.y() != 0.0 ? 64.0 * kEps * big_m / (std::abs(ur.y()) * res) + position_err : 0.0;
-  const double left_err =
-      ul.y() != 0.0 ? 64.0 * kEps * big_m / (std::abs(ul.y()) * res) + position_err : 0.0;
-  const bool fast_edges = ur.y() != 0.0 && ul.y() != 0.0;
-  const double disc_err =
-      64.0 * kEps * big_m * inv_res * (cone.outerRadius() * inv_res + 1.0) + position_err;
+  s.right_err = ur.y() != 0.0 ? 64.0 * kEps * big_m / (std::abs(ur.y()) * res) + position_err : 0.0;
+  s.left_err = ul.y() != 0.0 ? 64.0 * kEps * big_m / (std::abs(ul.y()) * res) + position_err : 0.0;
+  s.disc_err =
+      64.0 * kEps * big_m * s.inv_res * (cone.outerRadius() * s.inv_res + 1.0) + position_err;
 
-#if defined(__SSE2__)
-  const __m128d apex_v = _mm_set1_pd(apex_col);
-  const __m128d slopes_v = _mm_set_pd(left_slope, right_slope);  // lanes: right, left
-  const __m128d edge_err_v = _mm_set_pd(left_err, right_err);
-  const __m128d disc_err_v = _mm_set1_pd(disc_err);
-  const __m128d lo_v = _mm_set1_pd(static_cast<double>(lo) - 1.5);
-  const __m128d hi_v = _mm_set1_pd(static_cast<double>(hi) + 1.5);
-  const __m128d inv_res_v = _mm_set1_pd(inv_res);
-  const __m128d ends_v = _mm_set_pd(1.0, -1.0);  // lanes: left end, right end
-#endif
+  s.has_arc = cone.has_arc;
+  s.outer_strict = !cone.has_arc;
+  s.outer2 = cone.has_arc ? cone.arc_outer_radius2 : cone.free_radius2;
+  s.free2 = cone.free_radius2;
+  return s;
+}
 
-  // Rows outside the outer disc: |d|^2 >= dy^2 for every cell of the row.
-  const double outer2 = cone.has_arc ? cone.arc_outer_radius2 : cone.free_radius2;
-  const double free2 = cone.free_radius2;
-  const bool outer_strict = !cone.has_arc;
-#if defined(__SSE2__)
-  const __m128d radii2_v = _mm_set_pd(free2, outer2);  // lanes: outer, free
-#endif
+bool scanConeRowExact(const SonarCone& cone, const ConeScanSetup& s, int row, ConeRow& out) {
+  const double ox = cone.apex.x();
+  const double res = s.res;
+  const double inv_res = s.inv_res;
+  const double apex_col = s.apex_col;
+  const int lo = s.lo, hi = s.hi, split = s.split;
+  const auto dxOf = [&](int col) { return cellCentreCoordinate(col, res) - ox; };
+  const double dy = cellCentreCoordinate(row, res) - s.oy;
+  const double dy2 = dy * dy;
+  if (s.outer_strict ? !(dy2 < s.outer2) : !(dy2 <= s.outer2))
+    return false;  // outside the outer disc: |d|^2 >= dy^2 for every cell of the row
 
-  for (int row = bounds.row0; row <= bounds.row1; ++row) {
-    const double dy = cellCentreCoordinate(row, res) - oy;
-    const double dy2 = dy * dy;
-    if (outer_strict ? !(dy2 < outer2) : !(dy2 <= outer2))
-      continue;
-
-    // 0. The usual case: every boundary estimate of the row is clear of cell centres. The six
-    // estimates (two edges, two ends of each disc) are then the boundaries, each taken on the
-    // whole box [lo, hi] and intersected afterwards, so that none waits for another.
-    {
-      bool decided = fast_edges;
-      const bool free_row = cone.has_arc && dy2 < free2;
-      bool free_decided = true;  // the free disc matters only on free rows
-      int kr = 0, kl = 0, o0 = 0, o1 = 0, f0 = 0, f1 = 0;
-#if defined(__SSE2__)
-      // The same expressions as the scalar branch below, two lanes at a time.
-      const __m128d dy_v = _mm_set1_pd(dy);
-      floorDecided2(_mm_add_pd(apex_v, _mm_mul_pd(dy_v, slopes_v)), edge_err_v, lo_v, hi_v, kr, kl,
-                    decided);
-      const __m128d chords = _mm_mul_pd(
-          _mm_sqrt_pd(_mm_max_pd(_mm_sub_pd(radii2_v, _mm_set1_pd(dy2)), _mm_setzero_pd())),
-          inv_res_v);
-      const double outer_chord = _mm_cvtsd_f64(chords);
-      const double free_chord = _mm_cvtsd_f64(_mm_unpackhi_pd(chords, chords));
-      floorDecided2(_mm_add_pd(apex_v, _mm_mul_pd(_mm_unpacklo_pd(chords, chords), ends_v)),
-                    disc_err_v, lo_v, hi_v, o0, o1, decided);
-      floorDecided2(_mm_add_pd(apex_v, _mm_mul_pd(_mm_unpackhi_pd(chords, chords), ends_v)),
-                    disc_err_v, lo_v, hi_v, f0, f1, free_decided);
-#else
-      kr = floorDecided(apex_col + dy * right_slope, lo, hi, right_err, decided);
-      kl = floorDecided(apex_col + dy * left_slope, lo, hi, left_err, decided);
-      const double outer_chord = std::sqrt(std::max(0.0, outer2 - dy2)) * inv_res;
-      o0 = floorDecided(apex_col + -1.0 * outer_chord, lo, hi, disc_err, decided);
-      o1 = floorDecided(apex_col + 1.0 * outer_chord, lo, hi, disc_err, decided);
-      const double free_chord = std::sqrt(std::max(0.0, free2 - dy2)) * inv_res;
-      f0 = floorDecided(apex_col + -1.0 * free_chord, lo, hi, disc_err, free_decided);
-      f1 = floorDecided(apex_col + 1.0 * free_chord, lo, hi, disc_err, free_decided);
-#endif
-      ++o0;  // first column inside: ceil of the left end, never an integer here
-      ++f0;
-      decided &= outer_chord >= 1.0 && (!free_row || (free_decided && free_chord >= 1.0));
-      if (decided) [[likely]] {
-        // Right edge: uy > 0 keeps columns <= its crossing, uy < 0 those >= it; the left edge
-        // the other way round.
-        // Clamped to the box like the searches below (an estimate may say hi + 1).
-        const int wa = std::max(ur.y() > 0.0 ? lo : kr + 1, ul.y() > 0.0 ? kl + 1 : lo);
-        const int wb = std::min({ur.y() > 0.0 ? kr : hi, ul.y() > 0.0 ? hi : kl, hi});
-        ConeRow out;
-        out.row = row;
-        out.col0 = std::max(wa, o0);
-        out.col1 = std::min(wb, o1);
-        if (out.col0 > out.col1)
-          continue;
-        if (!cone.has_arc) {
-          out.free0 = out.col0;
-          out.free1 = out.col1;
-        } else if (free_row) {
-          out.free0 = std::max(out.col0, f0);
-          out.free1 = std::min(out.col1, f1);
-        } else {
-          out.free0 = out.col0;
-          out.free1 = out.col0 - 1;
-        }
-        rows.push_back(out);
-        if (observer != nullptr)
-          observer->rowFound(out);
-        continue;
-      }
-    }
-
-    // 1. The beam [wa, wb].
-    int wa = lo, wb = hi;
-    {
-      const auto ok = [&](int col) { return leftOfRightEdge(cone, dxOf(col), dy); };
-      const double at = apex_col + dy * right_slope;
-      if (ur.y() > 0.0)
-        wb = lastTrueNear(lo, hi, floorGuess(at, lo, hi), ok);
-      else if (ur.y() < 0.0)
-        wa = firstTrueNear(lo, hi, ceilGuess(at, lo, hi), ok);
-      else if (!ok(lo))
-        continue;  // a horizontal edge: the row is entirely on one side
-    }
-    {
-      const auto ok = [&](int col) { return rightOfLeftEdge(cone, dxOf(col), dy); };
-      const double at = apex_col + dy * left_slope;
-      if (ul.y() > 0.0)
-        wa = std::max(wa, firstTrueNear(lo, hi, ceilGuess(at, lo, hi), ok));
-      else if (ul.y() < 0.0)
-        wb = std::min(wb, lastTrueNear(lo, hi, floorGuess(at, lo, hi), ok));
-      else if (!ok(lo))
-        continue;
-    }
-    if (wa > wb)
-      continue;
-
-    // 2. A disc's cells within [a, b], an interval [first, last] (empty when first > last):
-    // when an end of [a, b] is inside it is that end; otherwise left of the split the first
-    // inside column, right of it the last one, each estimated at ox -+ sqrt(r^2 - dy^2). Rows
-    // wholly inside (most rows of a cone seen side on) cost two evaluations and no root.
-    // (Forced inline: as a call it cost GCC a tenth of a short cone's time.)
-    const auto discInterval = [&](double r2, auto inside, int a, int b, int& first,
-                                  int& last) IRGS_ALWAYS_INLINE {
-      const bool a_in = inside(a);
-      const bool b_in = inside(b);
-      if (a_in && b_in) {
-        first = a;
-        last = b;
-        return;
-      }
-      const double half_chord = std::sqrt(std::max(0.0, r2 - dy2)) * inv_res;
-      const int left_end = std::min(b, split - 1);
-      const int right_start = std::max(a, split);
-      first = a_in            ? a
-              : a <= left_end ? firstTrueNear(a, left_end,
-                                              ceilGuess(apex_col - half_chord, a, left_end), inside)
-                              : right_start;
-      last = b_in ? b
-             : right_start <= b
-                 ? lastTrueNear(right_start, b, floorGuess(apex_col + half_chord, right_start, b),
-                                inside)
-                 : left_end;
-    };
-    const auto insideStrict = [&](double r2) {
-      return [&dxOf, dy2, r2](int col) {
-        const double dx = dxOf(col);
-        return dx * dx + dy2 < r2;  // radius2(dx, dy), the same rounding
-      };
-    };
-    const auto insideClosed = [&](double r2) {
-      return [&dxOf, dy2, r2](int col) {
-        const double dx = dxOf(col);
-        return dx * dx + dy2 <= r2;
-      };
-    };
-
-    ConeRow out;
-    out.row = row;
-    if (outer_strict)
-      discInterval(outer2, insideStrict(outer2), wa, wb, out.col0, out.col1);
-    else
-      discInterval(outer2, insideClosed(outer2), wa, wb, out.col0, out.col1);
-    if (out.col0 > out.col1)
-      continue;
-    if (!cone.has_arc) {
-      out.free0 = out.col0;
-      out.free1 = out.col1;
-    } else if (dy2 < free2) {
-      // The free disc lies inside the outer one (r_free <= r_outer): search within the row's
-      // cone cells only.
-      discInterval(free2, insideStrict(free2), out.col0, out.col1, out.free0, out.free1);
-    } else {
-      out.free0 = out.col0;
-      out.free1 = out.col0 - 1;
-    }
-    rows.push_back(out);
-    if (observer != nullptr)
-      observer->rowFound(out);
+  // 1. The beam [wa, wb].
+  const Vec2& ur = cone.right_edge;
+  const Vec2& ul = cone.left_edge;
+  int wa = lo, wb = hi;
+  {
+    const auto ok = [&](int col) { return leftOfRightEdge(cone, dxOf(col), dy); };
+    const double at = apex_col + dy * s.right_slope;
+    if (ur.y() > 0.0)
+      wb = lastTrueNear(lo, hi, floorGuess(at, lo, hi), ok);
+    else if (ur.y() < 0.0)
+      wa = firstTrueNear(lo, hi, ceilGuess(at, lo, hi), ok);
+    else if (!ok(lo))
+      return false;  // a horizontal edge: the row is entirely on one side
   }
+  {
+    const auto ok = [&](int col) { return rightOfLeftEdge(cone, dxOf(col), dy); };
+    const double at = apex_col + dy * s.left_slope;
+    if (ul.y() > 0.0)
+      wa = std::max(wa, firstTrueNear(lo, hi, ceilGuess(at, lo, hi), ok));
+    else if (ul.y() < 0.0)
+      wb = std::min(wb, lastTrueNear(lo, hi, floorGuess(at, lo, hi), ok));
+    else if (!ok(lo))
+      return false;
+  }
+  if (wa > wb)
+    return false;
+
+  // 2. A disc's cells within [a, b], an interval [first, last] (empty when first > last):
+  // when an end of [a, b] is inside it is that end; otherwise left of the split the first
+  // inside column, right of it the last one, each estimated at ox -+ sqrt(r^2 - dy^2). Rows
+  // wholly inside (most rows of a cone seen side on) cost two evaluations and no root.
+  const auto discInterval = [&](double r2, auto inside, int a, int b, int& first, int& last) {
+    const bool a_in = inside(a);
+    const bool b_in = inside(b);
+    if (a_in && b_in) {
+      first = a;
+      last = b;
+      return;
+    }
+    const double half_chord = std::sqrt(std::max(0.0, r2 - dy2)) * inv_res;
+    const int left_end = std::min(b, split - 1);
+    const int right_start = std::max(a, split);
+    first = a_in ? a
+            : a <= left_end
+                ? firstTrueNear(a, left_end, ceilGuess(apex_col - half_chord, a, left_end), inside)
+                : right_start;
+    last = b_in ? b
+           : right_start <= b
+               ? lastTrueNear(right_start, b, floorGuess(apex_col + half_chord, right_start, b),
+                              inside)
+               : left_end;
+  };
+  const auto insideStrict = [&](double r2) {
+    return [&dxOf, dy2, r2](int col) {
+      const double dx = dxOf(col);
+      return dx * dx + dy2 < r2;  // radius2(dx, dy), the same rounding
+    };
+  };
+  const auto insideClosed = [&](double r2) {
+    return [&dxOf, dy2, r2](int col) {
+      const double dx = dxOf(col);
+      return dx * dx + dy2 <= r2;
+    };
+  };
+
+  out.row = row;
+  if (s.outer_strict)
+    discInterval(s.outer2, insideStrict(s.outer2), wa, wb, out.col0, out.col1);
+  else
+    discInterval(s.outer2, insideClosed(s.outer2), wa, wb, out.col0, out.col1);
+  if (out.col0 > out.col1)
+    return false;
+  if (!s.has_arc) {
+    out.free0 = out.col0;
+    out.free1 = out.col1;
+  } else if (dy2 < s.free2) {
+    // The free disc lies inside the outer one (r_free <= r_outer): search within the row's
+    // cone cells only.
+    discInterval(s.free2, insideStrict(s.free2), out.col0, out.col1, out.free0, out.free1);
+  } else {
+    out.free0 = out.col0;
+    out.free1 = out.col0 - 1;
+  }
+  return true;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx2"))) void estimateConeRowsAvx2(const ConeScanSetup& s,
+                                                          std::vector<double>& storage,
+                                                          ConeRowEstimates& out) {
+  estimateConeRows(s, storage, out);
+}
+// 256-bit vectors like the AVX2 loop, but AVX-512's 32 vector registers: the loop's ~30
+// constants then stay in registers instead of being spilled.
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=256"))) void
+estimateConeRowsAvx512(const ConeScanSetup& s, std::vector<double>& storage,
+                       ConeRowEstimates& out) {
+  estimateConeRows(s, storage, out);
+}
+#else
+// Never called: gridSimdSupported is false for AVX2 and AVX-512 here.
+void estimateConeRowsAvx512(const ConeScanSetup& s, std::vector<double>& storage,
+                            ConeRowEstimates& out) {
+  estimateConeRows(s, storage, out);
+}
+void estimateConeRowsAvx2(const ConeScanSetup& s, std::vector<double>& storage,
+                          ConeRowEstimates& out) {
+  estimateConeRows(s, storage, out);
+}
+#endif
+
+void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows,
+                  GridSimd simd) {
+  if (!gridSimdSupported(simd))
+    throw std::invalid_argument("scanConeRows: instruction set not supported here");
+  rows.clear();
+  const ConeScanSetup setup =
+      makeConeScanSetup(cone, resolution_m, coneCellBounds(cone, resolution_m));
+  std::vector<double> storage;
+  ConeRowEstimates estimates;
+  estimateConeRows(setup, storage, estimates, simd);
+  ConeRow row;
+  for (int i = 0; i < estimates.count; ++i)
+    if (coneRowAt(cone, setup, estimates, i, row))
+      rows.push_back(row);
+}
+
+void scanConeRowsExact(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows) {
+  rows.clear();
+  const ConeScanSetup setup =
+      makeConeScanSetup(cone, resolution_m, coneCellBounds(cone, resolution_m));
+  if (!setup.has_cells)
+    return;
+  ConeRow row;
+  for (int r = setup.row0; r <= setup.row1; ++r)
+    if (scanConeRowExact(cone, setup, r, row))
+      rows.push_back(row);
 }
 
 void rasteriseCone(const SonarCone& cone, double resolution_m, std::vector<ConeSpan>& spans) {

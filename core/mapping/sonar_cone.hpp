@@ -81,23 +81,18 @@ struct ConeRow {
 };
 
 // Replaces `rows` with the cone's non-empty rows, ascending. Exactly the cells classify() puts in
-// the cone (bit for bit). Cost per row: O(1) floating-point work (one square root per disc; each
-// boundary is estimated analytically and used directly when clear of cell centres by more than
-// its error bound, else confirmed with two evaluations of the criterion and walked from only when
-// rounding puts it elsewhere) and nothing per cell. Reusing `rows` across calls keeps this free
-// of heap allocations.
-void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows);
-
-// Told of each row as scanConeRows finds it, before the next one is scanned: OccupancyGrid starts
-// fetching a row's cells from memory there, so that the fetch overlaps the rest of the scan.
-class ConeRowObserver {
- public:
-  virtual ~ConeRowObserver() = default;
-  virtual void rowFound(const ConeRow& row) = 0;
-};
-// scanConeRows, calling observer->rowFound for each row as it is appended (observer may be null).
+// the cone (bit for bit). Cost per row: O(1) floating-point work and nothing per cell: the
+// analytic boundary estimates (ray/row and circle/row intersections, one square root per disc)
+// of all rows at once, vectorised, each used directly when clear of cell centres by more than
+// its error bound; rows where one is not are scanned by scanConeRowsExact's per-row path (see
+// sonar_cone_scan.hpp). `simd` picks the vector width (the rows do not depend on it); throws
+// std::invalid_argument when the CPU does not support it.
 void scanConeRows(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows,
-                  ConeRowObserver* observer);
+                  GridSimd simd = bestGridSimd());
+// The same rows, every one by the exact path: each boundary estimate confirmed with two
+// evaluations of the criterion and walked from when rounding puts it elsewhere. The reference
+// for scanConeRows' fast path in tests; slower.
+void scanConeRowsExact(const SonarCone& cone, double resolution_m, std::vector<ConeRow>& rows);
 
 // Replaces `spans` with the cone's cells as row spans: rows ascending, within a row columns
 // ascending, spans disjoint, never kOutside. Cost: O(rows) boundary work + no per-cell work.

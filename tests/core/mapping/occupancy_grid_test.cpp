@@ -350,45 +350,115 @@ RandomCone randomCone(std::mt19937_64& rng, double max_range_m) {
   return c;
 }
 
+// Every instruction set the machine supports (the grid's results must not depend on it).
+std::vector<GridSimd> supportedSimd() {
+  std::vector<GridSimd> out;
+  for (const GridSimd simd : {GridSimd::kPortable, GridSimd::kAvx2, GridSimd::kAvx512})
+    if (gridSimdSupported(simd))
+      out.push_back(simd);
+  return out;
+}
+
 TEST(OccupancyGrid, FastConeEqualsNaiveReferenceOnRandomCones) {
   std::mt19937_64 rng(20240611);
   struct Setup {
     double resolution_m, max_range_m;
     int cones;
   };
-  for (const Setup setup :
-       {Setup{0.01, 1.0, 1000}, Setup{0.05, 4.0, 1500}, Setup{0.013, 0.3, 1500}}) {
-    SonarInverseModel model;
-    for (int i = 0; i < setup.cones; ++i) {
-      const RandomCone c = randomCone(rng, setup.max_range_m);
-      model.arc_thickness_m = i % 3 == 0 ? 0.0 : 0.1 * std::uniform_real_distribution<>(0, 1)(rng);
-      OccupancyGrid fast(setup.resolution_m), naive(setup.resolution_m);
-      fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
-      naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
-      ASSERT_TRUE(fast == naive) << "cone " << i << " at (" << c.origin.x() << ", " << c.origin.y()
-                                 << ") heading " << c.heading_rad << " beam " << c.beam_rad
-                                 << " range " << c.range_m << " echo " << c.echo << ": "
-                                 << firstDifference(fast, naive);
-      ASSERT_EQ(fast.cellUpdates(), naive.cellUpdates());
-      ASSERT_EQ(fast.observedCellRect(), naive.observedCellRect());
+  for (const GridSimd simd : supportedSimd()) {
+    SCOPED_TRACE("simd " + std::to_string(static_cast<int>(simd)));
+    for (const Setup setup :
+         {Setup{0.01, 1.0, 1000}, Setup{0.05, 4.0, 1500}, Setup{0.013, 0.3, 1500}}) {
+      SonarInverseModel model;
+      for (int i = 0; i < setup.cones; ++i) {
+        const RandomCone c = randomCone(rng, setup.max_range_m);
+        model.arc_thickness_m =
+            i % 3 == 0 ? 0.0 : 0.1 * std::uniform_real_distribution<>(0, 1)(rng);
+        OccupancyGrid fast(setup.resolution_m), naive(setup.resolution_m);
+        fast.setSimd(simd);
+        fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+        naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+        ASSERT_TRUE(fast == naive)
+            << "cone " << i << " at (" << c.origin.x() << ", " << c.origin.y() << ") heading "
+            << c.heading_rad << " beam " << c.beam_rad << " range " << c.range_m << " echo "
+            << c.echo << ": " << firstDifference(fast, naive);
+        ASSERT_EQ(fast.cellUpdates(), naive.cellUpdates());
+        ASSERT_EQ(fast.observedCellRect(), naive.observedCellRect());
+      }
     }
   }
 }
 
 TEST(OccupancyGrid, FastAndNaiveAccumulateToTheSameGrid) {
-  std::mt19937_64 rng(7);
-  OccupancyGrid fast(0.02), naive(0.02);
-  SonarInverseModel model;
-  model.clamp_min = -1.0;  // reached after 3 free updates: exercises clamping on both paths
-  for (int i = 0; i < 300; ++i) {
-    RandomCone c = randomCone(rng, 2.0);
-    c.origin *= 0.2;  // overlapping cones
-    fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
-    naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+  for (const GridSimd simd : supportedSimd()) {
+    SCOPED_TRACE("simd " + std::to_string(static_cast<int>(simd)));
+    std::mt19937_64 rng(7);
+    OccupancyGrid fast(0.02), naive(0.02);
+    fast.setSimd(simd);
+    SonarInverseModel model;
+    model.clamp_min = -1.0;  // reached after 3 free updates: exercises clamping on both paths
+    for (int i = 0; i < 300; ++i) {
+      RandomCone c = randomCone(rng, 2.0);
+      c.origin *= 0.2;  // overlapping cones
+      fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+      naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+    }
+    EXPECT_TRUE(fast == naive) << firstDifference(fast, naive);
+    EXPECT_EQ(fast.exploredArea_m2(), naive.exploredArea_m2());
+    EXPECT_EQ(fast.takeDirtyRect(), naive.takeDirtyRect());
   }
-  EXPECT_TRUE(fast == naive) << firstDifference(fast, naive);
-  EXPECT_EQ(fast.exploredArea_m2(), naive.exploredArea_m2());
-  EXPECT_EQ(fast.takeDirtyRect(), naive.takeDirtyRect());
+}
+
+TEST(OccupancyGrid, TilesThatShareACacheSlotStayApart) {
+  // integrateSonar finds tiles through a direct-mapped cache indexed by the low 5 bits of the
+  // tile coordinates: tiles 32 apart (20.48 m at 1 cm) share a slot. Cones alternating between
+  // such places, then continuing in a moved and a copied grid, must write where the naive
+  // reference does.
+  for (const GridSimd simd : supportedSimd()) {
+    SCOPED_TRACE("simd " + std::to_string(static_cast<int>(simd)));
+    const double res = 0.01;
+    const double period = 32.0 * OccupancyGrid::kTileSize * res;
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    SonarInverseModel model;
+    OccupancyGrid fast(res), naive(res);
+    fast.setSimd(simd);
+    const auto both = [&](OccupancyGrid& f, OccupancyGrid& n) {
+      const Vec2 origin(1.0 + 0.5 * unit(rng) + period * std::floor(3.0 * unit(rng) - 1.0),
+                        2.0 + 0.5 * unit(rng) + period * std::floor(3.0 * unit(rng) - 1.0));
+      const double heading = 2.0 * kPi * unit(rng), range = 1.5 * unit(rng);
+      f.integrateSonar(origin, heading, degToRad(30.0), range, true, model);
+      n.integrateSonarNaive(origin, heading, degToRad(30.0), range, true, model);
+    };
+    for (int i = 0; i < 60; ++i)
+      both(fast, naive);
+    ASSERT_TRUE(fast == naive) << firstDifference(fast, naive);
+    OccupancyGrid moved = std::move(fast);
+    OccupancyGrid copied = moved;
+    OccupancyGrid naive_copy = naive;
+    for (int i = 0; i < 30; ++i) {
+      both(moved, naive);
+      both(copied, naive_copy);
+    }
+    EXPECT_TRUE(moved == naive) << firstDifference(moved, naive);
+    EXPECT_TRUE(copied == naive_copy) << firstDifference(copied, naive_copy);
+    // Assignments replace the tiles the cache pointed into.
+    OccupancyGrid reassigned(res), scratch(res);
+    reassigned.setSimd(simd);
+    both(reassigned, scratch);
+    reassigned = std::move(copied);
+    for (int i = 0; i < 30; ++i)
+      both(reassigned, naive_copy);
+    EXPECT_TRUE(reassigned == naive_copy) << firstDifference(reassigned, naive_copy);
+    OccupancyGrid assigned(res);
+    assigned.setSimd(simd);
+    both(assigned, scratch);
+    assigned = reassigned;
+    OccupancyGrid assigned_naive = naive_copy;
+    for (int i = 0; i < 30; ++i)
+      both(assigned, assigned_naive);
+    EXPECT_TRUE(assigned == assigned_naive) << firstDifference(assigned, assigned_naive);
+  }
 }
 
 TEST(OccupancyGrid, CopiesKeepIntegratingLikeTheNaiveReference) {

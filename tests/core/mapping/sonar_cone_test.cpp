@@ -122,8 +122,13 @@ TEST(SonarCone, RowsMatchPerCellCriterionOnRandomCones) {
     const SonarCone cone =
         makeSonarCone(apex, 2.0 * kPi * unit(rng), degToRad(2.0 + 170.0 * unit(rng)),
                       1.5 * unit(rng), unit(rng) < 0.7, model);
-    scanConeRows(cone, 0.01, rows);
-    ASSERT_EQ(fromRows(rows), perCell(cone, 0.01)) << "cone " << i;
+    const CellZones expected = perCell(cone, 0.01);
+    for (const GridSimd simd : {GridSimd::kPortable, GridSimd::kAvx2, GridSimd::kAvx512}) {
+      if (!gridSimdSupported(simd))
+        continue;
+      scanConeRows(cone, 0.01, rows, simd);
+      ASSERT_EQ(fromRows(rows), expected) << "cone " << i << " simd " << static_cast<int>(simd);
+    }
   }
 }
 
@@ -149,26 +154,32 @@ TEST(SonarCone, RowsMatchPerCellCriterionWhenBoundariesPassThroughCellCentres) {
   }
 }
 
-TEST(SonarCone, RowObserverSeesEveryRowInOrderAsItIsFound) {
-  struct Recorder final : ConeRowObserver {
-    std::vector<ConeRow>* live = nullptr;
-    std::vector<ConeRow> seen;
-    void rowFound(const ConeRow& row) override {
-      // Told as soon as the row is appended, before the next one.
-      EXPECT_EQ(live->back(), row);
-      seen.push_back(row);
+TEST(SonarCone, ExactPathAloneMatchesPerCellCriterionAndTheFastScan) {
+  // scanConeRows decides most rows from the vectorised estimates and hands the others to the
+  // exact per-row path; on random cones the second sees few rows. Here it scans every row, on
+  // the same kind of cones as above and on the sizes the grid benchmark uses.
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<ConeRow> exact, fast;
+  for (int i = 0; i < 300; ++i) {
+    SonarInverseModel model;
+    model.arc_thickness_m = 0.1 * unit(rng);
+    const double far = i % 2 == 0 ? 3.0 : 3000.0;
+    const Vec2 apex(-far + 2.0 * far * unit(rng), -far + 2.0 * far * unit(rng));
+    const double range = i % 4 == 0 ? 3.0 * unit(rng) : 0.5 * unit(rng);
+    const SonarCone cone =
+        makeSonarCone(apex, 2.0 * kPi * unit(rng), degToRad(2.0 + 90.0 * unit(rng)), range,
+                      unit(rng) < 0.7, model);
+    scanConeRowsExact(cone, 0.01, exact);
+    ASSERT_EQ(fromRows(exact), perCell(cone, 0.01)) << "cone " << i;
+    for (const GridSimd simd : {GridSimd::kPortable, GridSimd::kAvx2, GridSimd::kAvx512}) {
+      if (!gridSimdSupported(simd))
+        continue;
+      scanConeRows(cone, 0.01, fast, simd);
+      ASSERT_EQ(fromRows(fast), fromRows(exact))
+          << "cone " << i << " simd " << static_cast<int>(simd);
     }
-  };
-  std::vector<ConeRow> rows;
-  Recorder recorder;
-  recorder.live = &rows;
-  const SonarCone cone = makeSonarCone({0.3, -0.2}, 1.0, degToRad(30.0), 1.2, true, {});
-  scanConeRows(cone, 0.01, rows, &recorder);
-  ASSERT_FALSE(rows.empty());
-  EXPECT_EQ(recorder.seen, rows);
-  std::vector<ConeRow> without_observer;
-  scanConeRows(cone, 0.01, without_observer);
-  EXPECT_EQ(without_observer, rows);
+  }
 }
 
 TEST(SonarCone, SpansMatchPerCellCriterionWhenAnEdgeIsNearlyAxisAligned) {
