@@ -311,13 +311,21 @@ void MapReader::readMarkers(const json& root, WorldMap& map) {
     const auto position = pointMember(m, p, "position");
     const auto heading = optionalNumber(m, p, "heading_rad", marker.heading_rad);
     const auto size = positiveNumber(m, p, "size_m", marker.size_m, "metres");
-    marker.extra = extras(m, p, {"id", "position", "heading_rad", "size_m"});
-    if (!marker_id || !position || !heading || !size)
+    std::optional<ColourRgb> colour = kDefaultMarkerColour;
+    if (const json* c = member(m, p, "colour", false)) {
+      const auto text = string(*c, child(p, "colour"));
+      colour = text ? parseHexColour(*text) : std::nullopt;
+      if (text && !colour)
+        error(child(p, "colour"), "expected a colour \"#rrggbb\", found " + quote(*text));
+    }
+    marker.extra = extras(m, p, {"id", "position", "heading_rad", "size_m", "colour"});
+    if (!marker_id || !position || !heading || !size || !colour)
       continue;
     marker.id = *marker_id;
     marker.position = *position;
     marker.heading_rad = wrapAngle(*heading);
     marker.size_m = *size;
+    marker.colour = *colour;
     map.markers.push_back(std::move(marker));
   }
 }
@@ -418,9 +426,16 @@ void MapReader::readGraph(const json& root, WorldMap& map) {
         }
       }
       const auto bidirectional = boolean(e, p, "bidirectional", true);
-      edge.extra = extras(e, p, {"from", "to", "bidirectional"});
-      if (!ends[0] || !ends[1] || !bidirectional)
+      std::optional<double> cost;
+      bool cost_ok = true;
+      if (member(e, p, "cost_m", false) != nullptr) {
+        cost = positiveNumber(e, p, "cost_m", 1.0, "metres");
+        cost_ok = cost.has_value();
+      }
+      edge.extra = extras(e, p, {"from", "to", "bidirectional", "cost_m"});
+      if (!ends[0] || !ends[1] || !bidirectional || !cost_ok)
         continue;
+      edge.cost_m = cost;
       if (*ends[0] == *ends[1]) {
         error(child(p, "to"),
               "an edge must join two different nodes (both are " + quote(*ends[0]) + ")");

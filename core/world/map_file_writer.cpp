@@ -112,6 +112,8 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
     o["position"] = pointJson(m.position, child(p, "position"));
     o["heading_rad"] = finite(m.heading_rad, child(p, "heading_rad"));
     o["size_m"] = finite(m.size_m, child(p, "size_m"));
+    if (!(m.colour == kDefaultMarkerColour))  // maps without colours keep their bytes
+      o["colour"] = formatHexColour(m.colour);
     appendExtra(o, m.extra);
     markers.push_back(std::move(o));
   }
@@ -146,11 +148,14 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
   }
   graph["nodes"] = std::move(nodes);
   OrderedJson edges = OrderedJson::array();
-  for (const TopoEdge& e : map.graph.edges) {
+  for (std::size_t i = 0; i < map.graph.edges.size(); ++i) {
+    const TopoEdge& e = map.graph.edges[i];
     OrderedJson o = OrderedJson::object();
     o["from"] = e.from;
     o["to"] = e.to;
     o["bidirectional"] = e.bidirectional;
+    if (e.cost_m)
+      o["cost_m"] = finite(*e.cost_m, child(child("/graph/edges", i), "cost_m"));
     appendExtra(o, e.extra);
     edges.push_back(std::move(o));
   }

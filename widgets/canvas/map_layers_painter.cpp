@@ -93,6 +93,7 @@ void MapLayersPainter::setMap(const WorldMap& map) {
   }
 
   marker_polygons_.clear();
+  marker_colours_.clear();
   for (const CeilingMarker& marker : map_.markers) {
     if (!finite(marker.position) || !std::isfinite(marker.heading_rad))
       continue;
@@ -106,6 +107,7 @@ void MapLayersPainter::setMap(const WorldMap& map) {
       square << QPointF(w.x(), w.y());
     }
     marker_polygons_.push_back(square);
+    marker_colours_.emplace_back(marker.colour.r, marker.colour.g, marker.colour.b);
   }
 
   raster_image_ = map_.raster ? rasterToImage(map_.raster->raster) : QImage();
@@ -161,10 +163,15 @@ void MapLayersPainter::paintOver(QPainter& p, const QTransform& world, const QRe
     p.setPen(cosmeticPen(kLightOutline, 1.0));
     p.setBrush(kLightFill);
     p.drawPath(light_path_);
-    p.setPen(cosmeticPen(kMarkerOutline, 1.0));
-    p.setBrush(kMarkerFill);
-    for (const QPolygonF& square : marker_polygons_)
-      p.drawPolygon(square);
+    for (std::size_t i = 0; i < marker_polygons_.size(); ++i) {
+      // The default red keeps the palette's translucent look; other colours keep their hue.
+      QColor fill = marker_colours_[i], outline = marker_colours_[i];
+      fill.setAlpha(kMarkerFill.alpha());
+      outline.setAlpha(kMarkerOutline.alpha());
+      p.setPen(cosmeticPen(outline, 1.0));
+      p.setBrush(fill);
+      p.drawPolygon(marker_polygons_[i]);
+    }
     p.restore();
   }
 

@@ -3,6 +3,7 @@
 // prepared once per map: floor, raster and origin axes under the live grid; ceiling, obstacles,
 // walls, features and the topological graph over it.
 
+#include <QColor>
 #include <QImage>
 #include <QLineF>
 #include <QPainterPath>
@@ -48,7 +49,8 @@ class MapLayersPainter {
   std::vector<QPolygonF> obstacle_polygons_;
   QPainterPath light_path_;
   std::vector<QPolygonF> marker_polygons_;
-  QImage raster_image_;  // one pixel per raster cell, top row = largest y
+  std::vector<QColor> marker_colours_;  // each marker's own colour (the map's)
+  QImage raster_image_;                 // one pixel per raster cell, top row = largest y
 };
 
 }  // namespace irgs::widgets
