@@ -317,19 +317,25 @@ std::vector<ElementRef> cleanRefs(const WorldMap& map, const std::vector<Element
   return {unique.begin(), unique.end()};
 }
 
-// Nodes tied to any of the referenced markers and not referenced themselves: they go along when
-// the markers move or rotate.
+// Nodes that go along when the referenced elements move or rotate (and are not referenced
+// themselves): those tied to a referenced marker, and the ends of a referenced edge (an edge has
+// no points of its own: moving it moves its nodes).
 std::vector<ElementRef> tiedNodes(const WorldMap& map, const std::vector<ElementRef>& refs) {
-  std::set<std::string> markers;
-  for (const ElementRef& r : refs)
-    if (r.kind == ElementKind::kMarker)
+  std::set<std::string> markers, ends;
+  for (const ElementRef& r : refs) {
+    if (r.kind == ElementKind::kMarker) {
       markers.insert(map.markers[r.index].id);
+    } else if (r.kind == ElementKind::kEdge) {
+      ends.insert(map.graph.edges[r.index].from);
+      ends.insert(map.graph.edges[r.index].to);
+    }
+  }
   std::vector<ElementRef> out;
   for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
     const ElementRef ref{ElementKind::kNode, i};
-    const std::string& tie = map.graph.nodes[i].marker_id;
-    if (!tie.empty() && markers.count(tie) > 0 &&
-        std::find(refs.begin(), refs.end(), ref) == refs.end())
+    const TopoNode& n = map.graph.nodes[i];
+    const bool tied = !n.marker_id.empty() && markers.count(n.marker_id) > 0;
+    if ((tied || ends.count(n.id) > 0) && std::find(refs.begin(), refs.end(), ref) == refs.end())
       out.push_back(ref);
   }
   return out;
@@ -615,13 +621,17 @@ Edit replaceElement(const WorldMap& map, const ElementRef& ref, Element element,
   edit.label = std::move(label);
   edit.changes.push_back({ref.kind, ref.index, std::move(before), normalised(std::move(element))});
   edit.selection_after.push_back(ref);
-  // References follow a renamed marker (the nodes tied to it) or node (its edges).
-  if (renamed && ref.kind == ElementKind::kMarker && !old_id.empty()) {
+  // References follow a renamed marker (the nodes tied to it) or node (its edges); the nodes
+  // tied to a marker also follow its new position.
+  if (ref.kind == ElementKind::kMarker && !old_id.empty()) {
+    const Vec2 shift = std::get<CeilingMarker>(edit.changes.front().after.value()).position -
+                       std::get<CeilingMarker>(edit.changes.front().before.value()).position;
     for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
-      if (map.graph.nodes[i].marker_id != old_id)
+      if (map.graph.nodes[i].marker_id != old_id || (!renamed && shift.norm() == 0.0))
         continue;
       TopoNode n = map.graph.nodes[i];
       n.marker_id = id;
+      n.position += shift;
       edit.changes.push_back({ElementKind::kNode, i, Element(map.graph.nodes[i]), Element(n)});
     }
   } else if (renamed && ref.kind == ElementKind::kNode) {

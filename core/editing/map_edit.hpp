@@ -14,7 +14,7 @@
 // and edges; the raster layer as a whole. World metres and radians.
 //
 // The graph stays consistent through the builders: a node tied to a marker moves and rotates
-// with it, renaming a marker or node renames the references to it, deleting a node deletes its
+// with it (so do an edge's nodes when the edge is moved), renaming a marker or node renames the references to it, deleting a node deletes its
 // edges and deleting a marker unties its nodes; copies of nodes keep the edges among themselves.
 // Ids are unique within their group (walls, obstacles and features share one; markers, lights
 // and nodes each have their own, as in the file format); edges have no id.

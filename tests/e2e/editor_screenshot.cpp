@@ -1,7 +1,9 @@
 // Photographs the map editor on the bundled default map for docs/gui.md: the Edit tab with a
 // selected obstacle in the property panel, a wall being drawn with the angle snap showing, a
-// measurement, and a validation marker (a wall stopping short of another).
-// Usage: editor_screenshot OUT.png (run under xvfb-run or offscreen).
+// measurement, and a validation marker (a wall stopping short of another). With --ceiling: the
+// bundled delivery floor (paper 002) with a marker, its node and an edge placed by the tools, the
+// new edge in the property panel and a second edge being drawn.
+// Usage: editor_screenshot [--ceiling] OUT.png (run under xvfb-run or offscreen).
 
 #include <QAction>
 #include <QApplication>
@@ -28,13 +30,15 @@ using namespace irgs::gui;
 
 int main(int argc, char** argv) {
   QApplication app(argc, argv);
-  if (argc != 2) {
-    QTextStream(stderr) << "usage: editor_screenshot OUT.png\n";
+  const bool ceiling = argc == 3 && QString::fromLocal8Bit(argv[1]) == QStringLiteral("--ceiling");
+  if (argc != 2 && !ceiling) {
+    QTextStream(stderr) << "usage: editor_screenshot [--ceiling] OUT.png\n";
     return 2;
   }
   const std::string root = IRGS_SOURCE_DIR;
   RobotProfileResult robot = loadRobotProfileFile(root + "/resources/robots/thesis_robot.json");
-  MapLoadResult map = loadMapFile(root + "/resources/maps/default.json");
+  MapLoadResult map = loadMapFile(root + (ceiling ? "/resources/maps/delivery_floor_002.json"
+                                                  : "/resources/maps/default.json"));
   if (!robot.profile || !map.map)
     return 1;
   QTemporaryDir dir;
@@ -46,7 +50,8 @@ int main(int argc, char** argv) {
     return std::make_unique<SimulatedRobot>(m, p, config);
   });
   MainWindow window(session, settings);
-  session.loadWorld(*map.map, QStringLiteral("default.json"));
+  session.loadWorld(*map.map,
+                    QString::fromLatin1(ceiling ? "delivery_floor_002.json" : "default.json"));
   window.restoreSettings(QSize(1400, 860));
   window.resize(1400, 860);
   window.show();
@@ -60,33 +65,51 @@ int main(int argc, char** argv) {
   widgets::EditorLayer& layer = editor.layer();
   widgets::EditorModel& model = editor.model();
   auto px = [&](double x, double y) { return canvas.worldToWidget(Vec2(x, y)).toPoint(); };
+  if (ceiling) {
+    canvas.setView(Vec2(5.0, 8.0), 95.0);
+    app.processEvents();
+    // A new marker at (4.5, 10) heading along the corridor, a node on it, an edge from node 6.
+    layer.setTool(widgets::EditorTool::kCeilingMarker);
+    QTest::mousePress(&layer, Qt::LeftButton, {}, px(4.5, 10.0));
+    QTest::mouseMove(&layer, px(4.9, 10.0));
+    QTest::mouseRelease(&layer, Qt::LeftButton, {}, px(5.2, 10.0));
+    layer.setTool(widgets::EditorTool::kGraphNode);
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(4.53, 10.03));
+    layer.setTool(widgets::EditorTool::kGraphEdge);
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(2.0, 10.0));
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(4.5, 10.0));
+    // The next edge being drawn from node 5, the cursor on its way.
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(8.0, 5.75));
+    QTest::mouseMove(&layer, px(5.6, 7.9));
 
-  // A partition that stops 15 cm short of the outer wall: a validation warning.
-  model.tryApply([](const WorldMap& m) {
-    Wall wall;
-    wall.points = {Vec2(3.3, 2.3), Vec2(3.3, 3.35)};
-    return editing::addElement(m, wall);
-  });
-  // A measurement across the living room.
-  layer.setTool(widgets::EditorTool::kMeasure);
-  QTest::mousePress(&layer, Qt::LeftButton, {}, px(0.0, 2.4));
-  QTest::mouseMove(&layer, px(2.6, 2.4));
-  QTest::mouseRelease(&layer, Qt::LeftButton, {}, px(2.6, 2.4));
-  // The selected desk in the property panel (selection drawn with handles).
-  for (std::size_t i = 0; i < model.map().obstacles.size(); ++i) {
-    if (model.map().obstacles[i].id == "desk")
-      model.setSelection({{editing::ElementKind::kObstacle, i}});
+  } else {
+    // A partition that stops 15 cm short of the outer wall: a validation warning.
+    model.tryApply([](const WorldMap& m) {
+      Wall wall;
+      wall.points = {Vec2(3.3, 2.3), Vec2(3.3, 3.35)};
+      return editing::addElement(m, wall);
+    });
+    // A measurement across the living room.
+    layer.setTool(widgets::EditorTool::kMeasure);
+    QTest::mousePress(&layer, Qt::LeftButton, {}, px(0.0, 2.4));
+    QTest::mouseMove(&layer, px(2.6, 2.4));
+    QTest::mouseRelease(&layer, Qt::LeftButton, {}, px(2.6, 2.4));
+    // The selected desk in the property panel (selection drawn with handles).
+    for (std::size_t i = 0; i < model.map().obstacles.size(); ++i) {
+      if (model.map().obstacles[i].id == "desk")
+        model.setSelection({{editing::ElementKind::kObstacle, i}});
+    }
+    // A wall being drawn with the 45 degree snap, the cursor past its second point.
+    layer.setTool(widgets::EditorTool::kWall);
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(5.6, 1.0));
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(5.6, 2.2));
+    QTest::mouseMove(&layer, px(6.3, 2.85));
   }
-  // A wall being drawn with the 45 degree snap, the cursor past its second point.
-  layer.setTool(widgets::EditorTool::kWall);
-  QTest::mouseClick(&layer, Qt::LeftButton, {}, px(5.6, 1.0));
-  QTest::mouseClick(&layer, Qt::LeftButton, {}, px(5.6, 2.2));
-  QTest::mouseMove(&layer, px(6.3, 2.85));
 
   QEventLoop loop;
   QTimer::singleShot(300, &loop, &QEventLoop::quit);
   loop.exec();
-  const QString out = QString::fromLocal8Bit(argv[1]);
+  const QString out = QString::fromLocal8Bit(argv[argc - 1]);
   const bool ok = window.grab().save(out);
   QTextStream(stdout) << (ok ? "wrote " : "FAILED ") << out << '\n';
   editor.shutdown();

@@ -43,6 +43,14 @@ constexpr ToolInfo kTools[] = {
     {EditorTool::kStart, "Start pose", "Press at the start position, drag for the heading"},
     {EditorTool::kCorner, "Corner", "Place a corner (concave) feature"},
     {EditorTool::kEdge, "Edge", "Place an edge (convex) feature"},
+    {EditorTool::kCeilingMarker, "Marker",
+     "Place a ceiling marker: press at its centre, drag for its heading"},
+    {EditorTool::kCeilingLight, "Light",
+     "Draw a ceiling light: drag from one end of the tube to "
+     "the other"},
+    {EditorTool::kGraphNode, "Node",
+     "Place a graph node; on a ceiling marker it is tied to the marker, at its centre"},
+    {EditorTool::kGraphEdge, "Graph edge", "Join two graph nodes: click one, then the other"},
     {EditorTool::kMeasure, "Measure", "Drag to measure a distance and heading"},
 };
 

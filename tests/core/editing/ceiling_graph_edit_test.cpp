@@ -113,6 +113,15 @@ TEST(CeilingGraphEdit, MovingAMarkerTakesItsNodeAlongAndUndoes) {
   EXPECT_EQ(serializeMap(map), before);
 }
 
+TEST(CeilingGraphEdit, MovingAnEdgeMovesItsNodes) {
+  WorldMap map = corridor();
+  applyEdit(map, moveElements(map, {{ElementKind::kEdge, 1}}, {0.0, 0.25}));
+  EXPECT_TRUE(map.graph.nodes[0].position.isApprox(Vec2(1, 2)));
+  EXPECT_TRUE(map.graph.nodes[1].position.isApprox(Vec2(5, 2.25)));
+  EXPECT_TRUE(map.graph.nodes[2].position.isApprox(Vec2(5, 3.75)));
+  EXPECT_TRUE(map.markers[1].position.isApprox(Vec2(5, 2)));  // a node does not move its marker
+}
+
 TEST(CeilingGraphEdit, RotatingTurnsMarkerHeadingsAndLightTubes) {
   WorldMap map = corridor();
   const double quarter = std::numbers::pi / 2.0;
@@ -147,6 +156,12 @@ TEST(CeilingGraphEdit, RenamingANodeOrMarkerRenamesItsReferences) {
   const Edit e2 = replaceElement(map, {ElementKind::kMarker, 0}, m, "Rename");
   applyEdit(map, e2);
   EXPECT_EQ(map.graph.nodes[0].marker_id, "red-0");
+  // A marker edited to a new position takes its node along.
+  m.position = {1.5, 2.5};
+  const Edit e3 = replaceElement(map, {ElementKind::kMarker, 0}, m, "Edit position");
+  applyEdit(map, e3);
+  EXPECT_TRUE(map.graph.nodes[0].position.isApprox(Vec2(1.5, 2.5)));
+  revertEdit(map, e3);
   EXPECT_TRUE(validateMap(map).empty());
   // Taken ids within the group are refused.
   TopoNode clash = map.graph.nodes[0];
