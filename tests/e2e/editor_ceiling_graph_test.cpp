@@ -259,5 +259,43 @@ TEST_F(EditorCeilingGraphTest, MoveEditCopyDeleteUndoThenSaveAndReloadGiveTheExp
   EXPECT_EQ(map().graph.edges[1].cost_m, std::optional<double>(2.5));
 }
 
+TEST_F(EditorCeilingGraphTest, TyingRenamingAndDraggingALightEndThroughThePanelAndHandles) {
+  placeCeilingAndGraph();
+  panel().toolAction(EditorTool::kSelect)->trigger();
+
+  // Tie the free node-3 to marker-2 in the panel: it jumps onto the marker's centre.
+  click(1.0, -0.8);
+  ASSERT_EQ(model().selection(), (std::vector<ElementRef>{{ElementKind::kNode, 2}}));
+  QComboBox* markers = properties().markerCombo();
+  ASSERT_EQ(markers->count(), 3);  // (none), marker-1, marker-2
+  markers->setCurrentIndex(markers->findData(QStringLiteral("marker-2")));
+  EXPECT_EQ(map().graph.nodes[2].marker_id, "marker-2");
+  EXPECT_TRUE(map().graph.nodes[2].position.isApprox(Vec2(1.0, 0.5)));
+  panel().undoAction()->trigger();
+  EXPECT_TRUE(map().graph.nodes[2].position.isApprox(Vec2(1.0, -0.8)));
+
+  // Rename node-2: both of its edges follow; a taken id is refused in red.
+  click(1.0, 0.5);
+  ASSERT_EQ(model().selection(), (std::vector<ElementRef>{{ElementKind::kNode, 1}}));
+  properties().idEdit()->setText(QStringLiteral("junction"));
+  emit properties().idEdit()->editingFinished();
+  EXPECT_EQ(map().graph.edges[0].to, "junction");
+  EXPECT_EQ(map().graph.edges[1].from, "junction");
+  properties().idEdit()->setText(QStringLiteral("node-1"));
+  emit properties().idEdit()->editingFinished();
+  EXPECT_EQ(map().graph.nodes[1].id, "junction");
+  EXPECT_FALSE(properties().errorLabel()->text().isEmpty());
+
+  // Select the light, then drag its east end handle 0.3 m north: it turns and lengthens.
+  click(0.0, 0.5);
+  ASSERT_EQ(model().selection(), (std::vector<ElementRef>{{ElementKind::kLight, 0}}));
+  drag({0.6, 0.5}, {0.61, 0.79});
+  EXPECT_TRUE(map().lights[0].tube.a.isApprox(Vec2(-0.6, 0.5)));
+  EXPECT_TRUE(map().lights[0].tube.b.isApprox(Vec2(0.6, 0.8)));
+  EXPECT_NEAR(properties().headingSpin()->value(), radToDeg(std::atan2(0.3, 1.2)),
+              0.05);  // the panel shows the new orientation
+  EXPECT_TRUE(model().issues().empty());
+}
+
 }  // namespace
 }  // namespace irgs::gui
