@@ -534,6 +534,8 @@ void applyEdit(WorldMap& map, const Edit& edit) {
   }
   if (edit.raster)
     map.raster = edit.raster->after;
+  if (edit.floor_plan)
+    map.floor_plan = edit.floor_plan->after;
 }
 
 void revertEdit(WorldMap& map, const Edit& edit) {
@@ -552,6 +554,26 @@ void revertEdit(WorldMap& map, const Edit& edit) {
   }  // The raster layer is independent of the elements: its order among the changes is free.
   if (edit.raster)
     map.raster = edit.raster->before;
+  if (edit.floor_plan)
+    map.floor_plan = edit.floor_plan->before;
+}
+
+Edit setFloorPlan(const WorldMap& map, std::optional<FloorPlan> plan, std::string label) {
+  if (plan) {
+    if (plan->source.empty())
+      throw std::invalid_argument("floor plan: no image file");
+    if (!(std::isfinite(plan->metres_per_pixel) && plan->metres_per_pixel > 0.0))
+      throw std::invalid_argument("floor plan: the scale must be > 0 m per pixel");
+    if (!finite(plan->origin) || !std::isfinite(plan->rotation_rad))
+      throw std::invalid_argument("floor plan: origin or rotation is not finite");
+    if (!(plan->opacity >= 0.0 && plan->opacity <= 1.0))
+      throw std::invalid_argument("floor plan: the opacity must be from 0 to 1");
+    plan->rotation_rad = wrapAngle(plan->rotation_rad);
+  }
+  Edit edit;
+  edit.label = plan ? std::move(label) : "Remove floor plan";
+  edit.floor_plan = FloorPlanChange{map.floor_plan, std::move(plan)};
+  return edit;
 }
 
 Edit setRasterLayer(const WorldMap& map, std::optional<RasterLayer> layer) {

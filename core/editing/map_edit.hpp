@@ -14,10 +14,11 @@
 // and edges; the raster layer as a whole. World metres and radians.
 //
 // The graph stays consistent through the builders: a node tied to a marker moves and rotates
-// with it (so do an edge's nodes when the edge is moved), renaming a marker or node renames the references to it, deleting a node deletes its
-// edges and deleting a marker unties its nodes; copies of nodes keep the edges among themselves.
-// Ids are unique within their group (walls, obstacles and features share one; markers, lights
-// and nodes each have their own, as in the file format); edges have no id.
+// with it (so do an edge's nodes when the edge is moved), renaming a marker or node renames the
+// references to it, deleting a node deletes its edges and deleting a marker unties its nodes;
+// copies of nodes keep the edges among themselves. Ids are unique within their group (walls,
+// obstacles and features share one; markers, lights and nodes each have their own, as in the file
+// format); edges have no id.
 
 #include <cstddef>
 #include <optional>
@@ -81,13 +82,20 @@ struct RasterChange {
   std::optional<RasterLayer> after;
 };
 
-struct Edit {
-  std::string label;                        // for the undo menu ("Add wall")
-  std::vector<Change> changes;              // applied in order, reverted in reverse order
-  std::vector<ElementRef> selection_after;  // what the editor selects once applied
-  std::optional<RasterChange> raster;       // applied after `changes`, reverted before them
+// The floor-plan image (its reference and calibration) replaced, added or removed.
+struct FloorPlanChange {
+  std::optional<FloorPlan> before;
+  std::optional<FloorPlan> after;
+};
 
-  bool empty() const { return changes.empty() && !raster; }
+struct Edit {
+  std::string label;                          // for the undo menu ("Add wall")
+  std::vector<Change> changes;                // applied in order, reverted in reverse order
+  std::vector<ElementRef> selection_after;    // what the editor selects once applied
+  std::optional<RasterChange> raster;         // applied after `changes`, reverted before them
+  std::optional<FloorPlanChange> floor_plan;  // likewise
+
+  bool empty() const { return changes.empty() && !raster && !floor_plan; }
 };
 
 // Performs / undoes the edit. Throws std::logic_error when the map does not fit the edit
@@ -138,6 +146,12 @@ Edit replaceContents(const WorldMap& current, const WorldMap& target, std::strin
 // layer it had. Throws std::invalid_argument for a layer whose cell count does not match its
 // size or whose resolution is not > 0.
 Edit setRasterLayer(const WorldMap& map, std::optional<RasterLayer> layer);
+
+// Puts the floor plan under the map (nothing: removes it), or recalibrates it. Throws
+// std::invalid_argument for an empty source, a scale that is not > 0, a non-finite origin or
+// rotation, or an opacity outside 0..1.
+Edit setFloorPlan(const WorldMap& map, std::optional<FloorPlan> plan,
+                  std::string label = "Set floor plan");
 
 // Centre of the bounding box of the referenced elements (the rotation pivot).
 Vec2 selectionCentre(const WorldMap& map, const std::vector<ElementRef>& refs);

@@ -129,6 +129,24 @@ struct RasterLayer {
   std::string resolved_path{};
 };
 
+// A background floor-plan image under the map (a scanned or exported drawing to trace walls on).
+// Core never decodes the image: it holds the reference and the calibration; the GUI loads and
+// draws it. Pixel (u, v) (u right, v down from the top-left corner) lies at
+//   world = origin + R(rotation_rad) * metres_per_pixel * (u, -v).
+struct FloorPlan {
+  std::string source;  // as written in the file (relative to the map file's folder)
+  double metres_per_pixel = 0.02;
+  Vec2 origin = Vec2::Zero();  // world position of the image's top-left corner
+  double rotation_rad = 0.0;
+  double opacity = 0.5;  // 0..1, how strongly it shows under the map
+  nlohmann::json extra = nlohmann::json::object();
+  // Absolute path the image was found at (not written). When set, saveMapFile writes `source`
+  // relative to the new map file's folder.
+  std::string resolved_path{};
+
+  friend bool operator==(const FloorPlan&, const FloorPlan&) = default;
+};
+
 struct WorldMap {
   static constexpr int kFormatVersion = 1;
 
@@ -142,6 +160,7 @@ struct WorldMap {
   std::vector<MovingObstacle> moving_obstacles;  // simulated only; not in segments()
   Pose2 start;
   std::optional<RasterLayer> raster;
+  std::optional<FloorPlan> floor_plan;
   double ceiling_height_m = 2.5;
   nlohmann::json extra = nlohmann::json::object();        // unknown top-level keys
   nlohmann::json start_extra = nlohmann::json::object();  // unknown keys of "start"

@@ -9,7 +9,9 @@
 #include <QAction>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDir>
 #include <QDoubleSpinBox>
+#include <QImage>
 #include <QLabel>
 #include <QLineEdit>
 #include <QSettings>
@@ -21,6 +23,7 @@
 #include "app/gui/main_window.hpp"
 #include "app/gui/map_file_actions.hpp"
 #include "app/gui/session_controller.hpp"
+#include "core/editing/floor_plan.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/sim/simulated_robot.hpp"
 #include "core/world/map_file.hpp"
@@ -295,6 +298,68 @@ TEST_F(EditorCeilingGraphTest, TyingRenamingAndDraggingALightEndThroughThePanelA
   EXPECT_NEAR(properties().headingSpin()->value(), radToDeg(std::atan2(0.3, 1.2)),
               0.05);  // the panel shows the new orientation
   EXPECT_TRUE(model().issues().empty());
+}
+
+TEST_F(EditorCeilingGraphTest, AFloorPlanIsOpenedCalibratedByTwoClicksSavedAndReloaded) {
+  // A 200 x 100 px drawing in a folder beside the map's.
+  ASSERT_TRUE(QDir(dir_.path()).mkdir(QStringLiteral("plans")));
+  const QString image_path = dir_.filePath(QStringLiteral("plans/plan.png"));
+  QImage drawing(200, 100, QImage::Format_RGB32);
+  drawing.fill(Qt::white);
+  ASSERT_TRUE(drawing.save(image_path));
+  EXPECT_FALSE(panel().openFloorPlan(dir_.filePath(QStringLiteral("nope.png"))).isEmpty());
+  ASSERT_EQ(panel().openFloorPlan(image_path), QString());
+  ASSERT_TRUE(map().floor_plan);
+  EXPECT_EQ(layer().tool(), EditorTool::kCalibrate);
+  // 2 cm per pixel, the image's top-left corner at the map's (-1.5, 1.5).
+  EXPECT_NEAR(map().floor_plan->metres_per_pixel, 0.02, 1e-12);
+  EXPECT_TRUE(map().floor_plan->origin.isApprox(Vec2(-1.5, 1.5)));
+  const FloorPlan opened = *map().floor_plan;
+
+  // Click image pixel (50, 50), now at (-0.5, 0.5): the panel offers that as A's position.
+  const Vec2 a_now = editing::floorPlanToWorld(opened, {50, 50});
+  click(a_now.x(), a_now.y());
+  EXPECT_NEAR(panel().calibrationX().value(), -0.5, 0.01);
+  EXPECT_NEAR(panel().calibrationY().value(), 0.5, 0.01);
+  // A is truly at the origin and B, pixel (150, 50), 3 m from it.
+  panel().calibrationX().setValue(0.0);
+  panel().calibrationY().setValue(0.0);
+  panel().calibrationDistance().setValue(3.0);
+  const Vec2 b_now = editing::floorPlanToWorld(opened, {150, 50});
+  click(b_now.x(), b_now.y());
+  ASSERT_TRUE(map().floor_plan);
+  const FloorPlan calibrated = *map().floor_plan;
+  // Clicks land on whole screen pixels (half an image pixel here): 1 % on the scale.
+  EXPECT_NEAR(calibrated.metres_per_pixel, 0.03, 0.0003);
+  EXPECT_NEAR(calibrated.rotation_rad, 0.0, 0.01);
+  EXPECT_LT(editing::floorPlanToWorld(calibrated, {50, 50}).norm(), 0.02);
+  EXPECT_NEAR(editing::floorPlanToWorld(calibrated, {150, 50}).x(), 3.0, 0.04);
+  panel().undoAction()->trigger();
+  EXPECT_EQ(*map().floor_plan, opened);
+  panel().redoAction()->trigger();
+  EXPECT_EQ(*map().floor_plan, calibrated);
+  panel().floorPlanOpacity().setValue(0.3);
+  EXPECT_EQ(map().floor_plan->opacity, 0.3);
+
+  // Saved relative to the map file (atomically, with the rest), reloaded the same.
+  ASSERT_TRUE(window_->mapFiles().save());
+  const nlohmann::json saved = nlohmann::json::parse(readFile(map_path_.toStdString()).bytes);
+  EXPECT_EQ(saved["floor_plan"]["source"].get<std::string>(), "plans/plan.png");
+  EXPECT_NEAR(saved["floor_plan"]["metres_per_pixel"].get<double>(), calibrated.metres_per_pixel,
+              1e-12);
+  EXPECT_EQ(saved["floor_plan"]["opacity"].get<double>(), 0.3);
+  ASSERT_TRUE(window_->mapFiles().openMap(map_path_));
+  ASSERT_TRUE(map().floor_plan);
+  EXPECT_EQ(map().floor_plan->resolved_path,
+            QFileInfo(image_path).absoluteFilePath().toStdString());
+  EXPECT_NEAR(map().floor_plan->metres_per_pixel, calibrated.metres_per_pixel, 1e-12);
+  EXPECT_FALSE(editor().isModified());
+
+  // Remove, undo.
+  panel().removeFloorPlanAction()->trigger();
+  EXPECT_FALSE(map().floor_plan);
+  panel().undoAction()->trigger();
+  EXPECT_TRUE(map().floor_plan);
 }
 
 }  // namespace

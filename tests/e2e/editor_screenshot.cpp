@@ -7,7 +7,10 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QDoubleSpinBox>
 #include <QEventLoop>
+#include <QImage>
+#include <QPainter>
 #include <QSettings>
 #include <QTemporaryDir>
 #include <QTest>
@@ -17,6 +20,7 @@
 #include "app/gui/editor_controller.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/session_controller.hpp"
+#include "core/editing/floor_plan.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/sim/simulated_robot.hpp"
 #include "core/world/map_file.hpp"
@@ -52,8 +56,9 @@ int main(int argc, char** argv) {
   MainWindow window(session, settings);
   session.loadWorld(*map.map,
                     QString::fromLatin1(ceiling ? "delivery_floor_002.json" : "default.json"));
-  window.restoreSettings(QSize(1400, 860));
-  window.resize(1400, 860);
+  const QSize size(1400, ceiling ? 1000 : 860);  // the Edit tab's floor-plan box needs the height
+  window.restoreSettings(size);
+  window.resize(size);
   window.show();
   if (!QTest::qWaitForWindowExposed(&window))
     return 1;
@@ -66,7 +71,45 @@ int main(int argc, char** argv) {
   widgets::EditorModel& model = editor.model();
   auto px = [&](double x, double y) { return canvas.worldToWidget(Vec2(x, y)).toPoint(); };
   if (ceiling) {
-    canvas.setView(Vec2(5.0, 8.0), 95.0);
+    // A floor-plan drawing of the same floor (drawn here from the map's walls at 5 cm per pixel,
+    // as an architect's export would be), opened at the default 2 cm per pixel and calibrated
+    // with the Calibrate tool: two wall corners 18.5 m apart.
+    const double res = 0.05, x0 = -0.5, y1 = 12.0;  // the drawing's top-left corner in metres
+    QImage drawing(int(21.0 / res), int(13.0 / res), QImage::Format_RGB32);
+    drawing.fill(QColor(252, 250, 244));
+    {
+      QPainter d(&drawing);
+      d.setRenderHint(QPainter::Antialiasing);
+      auto img = [&](const Vec2& w) { return QPointF((w.x() - x0) / res, (y1 - w.y()) / res); };
+      d.setPen(QPen(QColor(70, 70, 90), 3.0));
+      for (const Segment& seg : model.map().segments())
+        d.drawLine(img(seg.a), img(seg.b));
+      QFont f = d.font();
+      f.setPixelSize(9);
+      d.setFont(f);
+      d.setPen(QColor(90, 90, 120));
+      d.drawText(img(Vec2(3.0, 5.0)), QStringLiteral("OFFICES"));
+      d.drawText(img(Vec2(3.2, 10.9)), QStringLiteral("CORRIDOR B"));
+      d.drawText(img(Vec2(8.3, 8.0)), QStringLiteral("HALL"));
+      d.drawText(img(Vec2(12.0, 0.9)), QStringLiteral("CORRIDOR A   18.5 m"));
+    }
+    const QString plan_path = dir.filePath(QStringLiteral("floor_plan.png"));
+    drawing.save(plan_path);
+    widgets::EditorPanel& panel = editor.panel();
+    if (!panel.openFloorPlan(plan_path).isEmpty())
+      return 1;
+    canvas.zoomToFit();
+    app.processEvents();
+    const FloorPlan opened = *model.map().floor_plan;
+    const Vec2 a = editing::floorPlanToWorld(opened, {(0.5 - x0) / res, (y1 - 0.5) / res});
+    const Vec2 b = editing::floorPlanToWorld(opened, {(19.0 - x0) / res, (y1 - 0.5) / res});
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(a.x(), a.y()));
+    panel.calibrationX().setValue(0.5);
+    panel.calibrationY().setValue(0.5);
+    panel.calibrationDistance().setValue(18.5);
+    QTest::mouseClick(&layer, Qt::LeftButton, {}, px(b.x(), b.y()));
+
+    canvas.setView(Vec2(6.0, 7.0), 78.0);
     app.processEvents();
     // A new marker at (4.5, 10) heading along the corridor, a node on it, an edge from node 6.
     layer.setTool(widgets::EditorTool::kCeilingMarker);

@@ -111,6 +111,12 @@ void MapLayersPainter::setMap(const WorldMap& map) {
   }
 
   raster_image_ = map_.raster ? rasterToImage(map_.raster->raster) : QImage();
+  // The floor plan's pixels do not change with its calibration: decode only a new file.
+  const std::string plan_path = map_.floor_plan ? map_.floor_plan->resolved_path : std::string();
+  if (plan_path != floor_plan_path_) {
+    floor_plan_path_ = plan_path;
+    floor_plan_image_ = plan_path.empty() ? QImage() : QImage(QString::fromStdString(plan_path));
+  }
 }
 
 void MapLayersPainter::paintUnder(QPainter& p, const QTransform& world, const QRectF& world_rect,
@@ -127,6 +133,20 @@ void MapLayersPainter::paintUnder(QPainter& p, const QTransform& world, const QR
     p.fillRect(floor.adjusted(-12, -12, 12, 12), kFloorColour);
   } else {
     p.fillRect(all, kFloorColour);
+  }
+
+  if (layers.raster && !floor_plan_image_.isNull() && map_.floor_plan) {
+    // Pixel (u, v) -> origin + R(rotation) * s * (u, -v) (core/editing/floor_plan.hpp).
+    const FloorPlan& f = *map_.floor_plan;
+    const double c = std::cos(f.rotation_rad) * f.metres_per_pixel;
+    const double s = std::sin(f.rotation_rad) * f.metres_per_pixel;
+    const QTransform image_to_world(c, s, s, -c, f.origin.x(), f.origin.y());
+    p.save();
+    p.setTransform(image_to_world * world);
+    p.setOpacity(f.opacity);
+    p.setRenderHint(QPainter::SmoothPixmapTransform, true);
+    p.drawImage(QPointF(0, 0), floor_plan_image_);
+    p.restore();
   }
 
   paintMetricGrid(p, world, world_rect, scale, area);

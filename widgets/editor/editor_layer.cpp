@@ -9,6 +9,7 @@
 #include <QWheelEvent>
 #include <cmath>
 
+#include "core/editing/floor_plan.hpp"
 #include "core/editing/hit_test.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/editor/editor_model.hpp"
@@ -67,6 +68,7 @@ void EditorLayer::setTool(EditorTool tool) {
     return;
   cancelDraft();
   edge_from_.clear();
+  calibration_a_.reset();
   drag_ = Drag::kNone;
   tool_ = tool;  // a measurement stays on the map until Escape or the next one
   setCursor(tool == EditorTool::kSelect ? Qt::ArrowCursor : Qt::CrossCursor);
@@ -216,6 +218,25 @@ void EditorLayer::mousePressEvent(QMouseEvent* event) {
     case EditorTool::kGraphEdge:
       clickEdgeNode(world);
       break;
+    case EditorTool::kCalibrate: {
+      // Image points are clicked where the drawing shows them: no snapping.
+      const std::optional<FloorPlan>& plan = model_.map().floor_plan;
+      if (!plan) {
+        emit message(tr("Open a floor plan first (Floor Plan…)"));
+        break;
+      }
+      const Vec2 pixel = editing::worldToFloorPlan(*plan, world);
+      if (!calibration_a_) {
+        calibration_a_ = pixel;
+        emit calibrationStarted(world.x(), world.y());
+        emit message(tr("Calibration: now click the second point of the floor plan"));
+      } else {
+        const Vec2 a = *calibration_a_;
+        calibration_a_.reset();
+        emit calibrationRequested(QPointF(a.x(), a.y()), QPointF(pixel.x(), pixel.y()));
+      }
+      break;
+    }
   }
   event->accept();
   update();
@@ -468,7 +489,9 @@ void EditorLayer::keyPressEvent(QKeyEvent* event) {
   const bool drawing = !draft_.empty();
   switch (event->key()) {
     case Qt::Key_Escape:
-      if (!edge_from_.empty())
+      if (calibration_a_)
+        calibration_a_.reset();
+      else if (!edge_from_.empty())
         edge_from_.clear();
       else if (drawing)
         cancelDraft();
@@ -685,6 +708,19 @@ void EditorLayer::paintEvent(QPaintEvent*) {
         p.setPen(QPen(kDraft, 2.0, Qt::DashLine));
         p.drawLine(toWidget(from->position), toWidget(*hover_));
       }
+    }
+  }
+
+  if (calibration_a_ && model_.map().floor_plan) {
+    const QPointF a =
+        toWidget(editing::floorPlanToWorld(*model_.map().floor_plan, *calibration_a_));
+    p.setPen(QPen(kMeasure, 2.0));
+    p.drawLine(a - QPointF(8, 0), a + QPointF(8, 0));
+    p.drawLine(a - QPointF(0, 8), a + QPointF(0, 8));
+    p.drawText(a + QPointF(6, -6), QStringLiteral("A"));
+    if (hover_) {
+      p.setPen(QPen(kMeasure, 1.5, Qt::DashLine));
+      p.drawLine(a, toWidget(*hover_));
     }
   }
 

@@ -10,7 +10,8 @@
 // heading), corner/edge feature (click), ceiling marker (press at the centre, drag for the
 // heading), ceiling light (drag from one end of the tube to the other), graph node (click; on a
 // marker it lands on the marker's centre, tied to it), graph edge (click one node, then another),
-// measure (drag). Points snap per the model's snap
+// floor-plan calibration (click two points of the image: the panel applies the distance and
+// the first point's position), measure (drag). Points snap per the model's snap
 // settings; Shift while drawing disables snapping. Escape cancels, Backspace removes the last
 // drawn point, Delete deletes the selection. The wheel and the middle button pass through to
 // the canvas (zoom and pan).
@@ -40,6 +41,7 @@ enum class EditorTool {
   kCeilingLight,
   kGraphNode,
   kGraphEdge,
+  kCalibrate,
   kMeasure,
 };
 
@@ -77,6 +79,10 @@ class EditorLayer : public QWidget {
   void toolChanged(irgs::widgets::EditorTool tool);
   void measured(double distance_m, double heading_rad);
   void message(const QString& text);  // hints and results for the status bar
+  // Calibrate tool: the first image point was clicked (where it lies now, world metres); then
+  // both points, as floor-plan image pixels.
+  void calibrationStarted(double x_m, double y_m);
+  void calibrationRequested(QPointF pixel_a, QPointF pixel_b);
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
@@ -121,7 +127,8 @@ class EditorLayer : public QWidget {
   irgs::editing::ElementRef vertex_ref_;
   std::size_t vertex_index_ = 0;
   std::optional<std::pair<irgs::Vec2, irgs::Vec2>> measure_;
-  std::string edge_from_;  // graph edge tool: the first node clicked
+  std::string edge_from_;                    // graph edge tool: the first node clicked
+  std::optional<irgs::Vec2> calibration_a_;  // calibrate tool: the first image pixel
 };
 
 }  // namespace irgs::widgets

@@ -6,18 +6,22 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
+#include <QFormLayout>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
+#include <QImageReader>
 #include <QLabel>
 #include <QListWidget>
 #include <QMessageBox>
+#include <QSignalBlocker>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <filesystem>
 
+#include "core/editing/floor_plan.hpp"
 #include "core/editing/vectorise.hpp"
 #include "core/world/ros_map.hpp"
 #include "widgets/editor/editor_model.hpp"
@@ -51,6 +55,9 @@ constexpr ToolInfo kTools[] = {
     {EditorTool::kGraphNode, "Node",
      "Place a graph node; on a ceiling marker it is tied to the marker, at its centre"},
     {EditorTool::kGraphEdge, "Graph edge", "Join two graph nodes: click one, then the other"},
+    {EditorTool::kCalibrate, "Calibrate",
+     "Calibrate the floor plan: click two points of the image whose true distance (and the "
+     "first one's position) you enter below"},
     {EditorTool::kMeasure, "Measure", "Drag to measure a distance and heading"},
 };
 
@@ -149,6 +156,68 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   }
   layout->addLayout(raster_row);
   connect(&model_, &EditorModel::mapChanged, this, &EditorPanel::updateActions);
+
+  // Floor plan: open, remove, opacity, and the calibration values the Calibrate tool applies.
+  auto* plan_box = new QGroupBox(tr("Floor plan"), this);
+  auto* plan_form = new QFormLayout(plan_box);
+  open_plan_ = new QAction(tr("Floor Plan…"), this);
+  open_plan_->setToolTip(tr("Put an image (a drawing of the floor) under the map"));
+  remove_plan_ = new QAction(tr("Remove"), this);
+  connect(open_plan_, &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Floor Plan"), {}, tr("Images (*.png *.jpg *.jpeg *.bmp *.pgm *.tif *.tiff)"));
+    if (path.isEmpty())
+      return;
+    const QString problem = openFloorPlan(path);
+    if (!problem.isEmpty())
+      QMessageBox::warning(this, tr("Floor Plan"), problem);
+  });
+  connect(remove_plan_, &QAction::triggered, &model_, [this] {
+    model_.tryApply([](const WorldMap& map) { return editing::setFloorPlan(map, std::nullopt); });
+  });
+  auto* plan_row = new QHBoxLayout;
+  for (QAction* a : {open_plan_, remove_plan_})
+    plan_row->addWidget(button(a, plan_box));
+  plan_opacity_ = new QDoubleSpinBox(plan_box);
+  plan_opacity_->setRange(0.0, 1.0);
+  plan_opacity_->setSingleStep(0.1);
+  plan_opacity_->setDecimals(2);
+  plan_opacity_->setKeyboardTracking(false);
+  plan_row->addWidget(new QLabel(tr("Opacity"), plan_box));
+  plan_row->addWidget(plan_opacity_);
+  plan_form->addRow(plan_row);
+  auto spin = [plan_box](double lo, double hi, double value) {
+    auto* s = new QDoubleSpinBox(plan_box);
+    s->setRange(lo, hi);
+    s->setDecimals(3);
+    s->setSuffix(QStringLiteral(" m"));
+    s->setValue(value);
+    return s;
+  };
+  calib_distance_ = spin(0.001, 10000.0, 1.0);
+  calib_x_ = spin(-100000.0, 100000.0, 0.0);
+  calib_y_ = spin(-100000.0, 100000.0, 0.0);
+  calib_distance_->setToolTip(tr("The true distance between the two points you click"));
+  auto* a_row = new QHBoxLayout;
+  a_row->addWidget(calib_x_);
+  a_row->addWidget(calib_y_);
+  plan_form->addRow(tr("A–B distance"), calib_distance_);
+  plan_form->addRow(tr("A is at x, y"), a_row);
+  layout->addWidget(plan_box);
+  connect(plan_opacity_, &QDoubleSpinBox::valueChanged, &model_, [this](double opacity) {
+    if (!model_.map().floor_plan || model_.map().floor_plan->opacity == opacity)
+      return;
+    FloorPlan plan = *model_.map().floor_plan;
+    plan.opacity = opacity;
+    model_.tryApply([&](const WorldMap& map) {
+      return editing::setFloorPlan(map, plan, "Floor plan opacity");
+    });
+  });
+  connect(&layer_, &EditorLayer::calibrationStarted, this, [this](double x, double y) {
+    calib_x_->setValue(x);
+    calib_y_->setValue(y);
+  });
+  connect(&layer_, &EditorLayer::calibrationRequested, this, &EditorPanel::calibrate);
 
   // Snapping.
   auto* snap_box = new QGroupBox(tr("Snap"), this);
@@ -269,6 +338,58 @@ QString EditorPanel::importRaster(const QString& yaml_path) {
   return {};
 }
 
+QString EditorPanel::openFloorPlan(const QString& image_path) {
+  QImageReader reader(image_path);
+  const QSize size = reader.size();
+  if (!reader.canRead() || !size.isValid())
+    return tr("%1 is not an image IRGS can read").arg(image_path);
+  const std::filesystem::path path = image_path.toStdString();
+  FloorPlan plan;
+  plan.source = path.filename().string();
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  plan.resolved_path = ec ? path.string() : absolute.lexically_normal().string();
+  plan.metres_per_pixel = 0.02;
+  // The image's top-left corner at the map's, until it is calibrated.
+  const Box2 box = model_.map().bounds();
+  plan.origin = box.empty() ? Vec2(0.0, size.height() * plan.metres_per_pixel)
+                            : Vec2(box.min.x(), box.max.y());
+  QString problem;
+  const QMetaObject::Connection listen = connect(&model_, &EditorModel::rejected, this,
+                                                 [&problem](const QString& why) { problem = why; });
+  const bool applied = model_.tryApply(
+      [&plan](const WorldMap& map) { return editing::setFloorPlan(map, plan, "Open floor plan"); });
+  disconnect(listen);
+  if (!applied)
+    return problem.isEmpty() ? tr("the floor plan was not opened") : problem;
+  layer_.setTool(EditorTool::kCalibrate);
+  return {};
+}
+
+void EditorPanel::calibrate(QPointF pixel_a, QPointF pixel_b) {
+  if (!model_.map().floor_plan)
+    return;
+  const FloorPlan& plan = *model_.map().floor_plan;
+  const Vec2 a(pixel_a.x(), pixel_a.y()), b(pixel_b.x(), pixel_b.y());
+  // B keeps its direction from A (the rotation stays); A goes where the fields say.
+  const Vec2 now = editing::floorPlanToWorld(plan, b) - editing::floorPlanToWorld(plan, a);
+  if (now.norm() <= 0.0) {
+    emit layer_.message(tr("Calibration: click two different points"));
+    return;
+  }
+  const Vec2 world_a(calib_x_->value(), calib_y_->value());
+  const Vec2 world_b = world_a + calib_distance_->value() * now.normalized();
+  const std::optional<FloorPlan> calibrated =
+      editing::calibrateFloorPlan(plan, a, b, world_a, world_b);
+  if (!calibrated)
+    return;
+  model_.tryApply([&](const WorldMap& map) {
+    return editing::setFloorPlan(map, calibrated, "Calibrate floor plan");
+  });
+  emit layer_.message(
+      tr("Floor plan: %1 m per pixel").arg(calibrated->metres_per_pixel, 0, 'g', 4));
+}
+
 void EditorPanel::updateActions() {
   const bool any = !model_.selection().empty();
   copy_->setEnabled(any);
@@ -276,6 +397,15 @@ void EditorPanel::updateActions() {
   paste_->setEnabled(model_.canPaste());
   if (vectorise_ != nullptr)
     vectorise_->setEnabled(model_.map().raster && !model_.map().raster->raster.empty());
+  if (remove_plan_ != nullptr) {
+    const bool plan = model_.map().floor_plan.has_value();
+    remove_plan_->setEnabled(plan);
+    plan_opacity_->setEnabled(plan);
+    if (plan && plan_opacity_->value() != model_.map().floor_plan->opacity) {
+      const QSignalBlocker block(plan_opacity_);
+      plan_opacity_->setValue(model_.map().floor_plan->opacity);
+    }
+  }
 }
 
 }  // namespace irgs::widgets
