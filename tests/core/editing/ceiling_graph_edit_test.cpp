@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/camera/ceiling_scene.hpp"
 #include "core/editing/hit_test.hpp"
 #include "core/editing/map_edit.hpp"
 #include "core/editing/snapping.hpp"
@@ -335,6 +336,18 @@ TEST(CeilingGraphFormat, ColourAndCostRoundTripAndDefaultsAreNotWritten) {
   ASSERT_FALSE(refused.diagnostics.empty());
   EXPECT_NE(refused.diagnostics.front().toString().find("/ceiling_markers/1/colour"),
             std::string::npos);
+}
+
+TEST(CeilingGraphFormat, TheCameraPaintsAMarkerOfAnotherColourAsADecoration) {
+  WorldMap map = corridor();
+  map.markers[1].colour = {0, 128, 255};
+  const CeilingScene scene = sceneFromMap(map);
+  ASSERT_EQ(scene.markers.size(), 1u);  // only the red one is a marker to detect
+  EXPECT_TRUE(scene.markers[0].centre.isApprox(Vec2(1, 2)));
+  ASSERT_EQ(scene.decorations.size(), 1u);
+  EXPECT_TRUE(scene.decorations[0].rect.centre.isApprox(Vec2(5, 2)));
+  EXPECT_NEAR(scene.decorations[0].albedo.b, 1.0, 1e-12);
+  EXPECT_NEAR(scene.decorations[0].albedo.g, 128.0 / 255.0, 1e-12);
 }
 
 }  // namespace
