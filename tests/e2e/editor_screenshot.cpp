@@ -16,6 +16,7 @@
 #include <QTest>
 #include <QTextStream>
 #include <QTimer>
+#include <algorithm>
 
 #include "app/gui/editor_controller.hpp"
 #include "app/gui/main_window.hpp"
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
   MainWindow window(session, settings);
   session.loadWorld(*map.map,
                     QString::fromLatin1(ceiling ? "delivery_floor_002.json" : "default.json"));
-  const QSize size(1400, ceiling ? 1000 : 860);  // the Edit tab's floor-plan box needs the height
+  const QSize size(1400, ceiling ? 1000 : 860);  // with a floor plan the Edit tab is taller
   window.restoreSettings(size);
   window.resize(size);
   window.show();

@@ -157,12 +157,11 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   layout->addLayout(raster_row);
   connect(&model_, &EditorModel::mapChanged, this, &EditorPanel::updateActions);
 
-  // Floor plan: open, remove, opacity, and the calibration values the Calibrate tool applies.
-  auto* plan_box = new QGroupBox(tr("Floor plan"), this);
-  auto* plan_form = new QFormLayout(plan_box);
+  // Floor plan: open beside the raster import; remove, opacity and the calibration values the
+  // Calibrate tool applies show only while there is a plan (the tab stays as short as before).
   open_plan_ = new QAction(tr("Floor Plan…"), this);
   open_plan_->setToolTip(tr("Put an image (a drawing of the floor) under the map"));
-  remove_plan_ = new QAction(tr("Remove"), this);
+  remove_plan_ = new QAction(tr("Remove Plan"), this);
   connect(open_plan_, &QAction::triggered, this, [this] {
     const QString path = QFileDialog::getOpenFileName(
         this, tr("Floor Plan"), {}, tr("Images (*.png *.jpg *.jpeg *.bmp *.pgm *.tif *.tiff)"));
@@ -175,19 +174,12 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   connect(remove_plan_, &QAction::triggered, &model_, [this] {
     model_.tryApply([](const WorldMap& map) { return editing::setFloorPlan(map, std::nullopt); });
   });
-  auto* plan_row = new QHBoxLayout;
-  for (QAction* a : {open_plan_, remove_plan_})
-    plan_row->addWidget(button(a, plan_box));
-  plan_opacity_ = new QDoubleSpinBox(plan_box);
-  plan_opacity_->setRange(0.0, 1.0);
-  plan_opacity_->setSingleStep(0.1);
-  plan_opacity_->setDecimals(2);
-  plan_opacity_->setKeyboardTracking(false);
-  plan_row->addWidget(new QLabel(tr("Opacity"), plan_box));
-  plan_row->addWidget(plan_opacity_);
-  plan_form->addRow(plan_row);
-  auto spin = [plan_box](double lo, double hi, double value) {
-    auto* s = new QDoubleSpinBox(plan_box);
+  raster_row->insertWidget(0, button(open_plan_, this));
+  plan_widget_ = new QWidget(this);
+  auto* plan_grid = new QGridLayout(plan_widget_);
+  plan_grid->setContentsMargins(0, 0, 0, 0);
+  auto spin = [this](double lo, double hi, double value) {
+    auto* s = new QDoubleSpinBox(plan_widget_);
     s->setRange(lo, hi);
     s->setDecimals(3);
     s->setSuffix(QStringLiteral(" m"));
@@ -197,13 +189,23 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   calib_distance_ = spin(0.001, 10000.0, 1.0);
   calib_x_ = spin(-100000.0, 100000.0, 0.0);
   calib_y_ = spin(-100000.0, 100000.0, 0.0);
-  calib_distance_->setToolTip(tr("The true distance between the two points you click"));
-  auto* a_row = new QHBoxLayout;
-  a_row->addWidget(calib_x_);
-  a_row->addWidget(calib_y_);
-  plan_form->addRow(tr("A–B distance"), calib_distance_);
-  plan_form->addRow(tr("A is at x, y"), a_row);
-  layout->addWidget(plan_box);
+  calib_distance_->setToolTip(tr("Calibrate tool: the true distance between the two points"));
+  calib_x_->setToolTip(tr("Calibrate tool: where the first point truly is (x)"));
+  calib_y_->setToolTip(tr("Calibrate tool: where the first point truly is (y)"));
+  plan_opacity_ = new QDoubleSpinBox(plan_widget_);
+  plan_opacity_->setRange(0.0, 1.0);
+  plan_opacity_->setSingleStep(0.1);
+  plan_opacity_->setDecimals(2);
+  plan_opacity_->setKeyboardTracking(false);
+  plan_opacity_->setPrefix(tr("opacity "));
+  plan_grid->addWidget(button(remove_plan_, plan_widget_), 0, 0);
+  plan_grid->addWidget(plan_opacity_, 0, 1);
+  plan_grid->addWidget(new QLabel(tr("A–B"), plan_widget_), 0, 2);
+  plan_grid->addWidget(calib_distance_, 0, 3);
+  plan_grid->addWidget(new QLabel(tr("A at x, y"), plan_widget_), 1, 0);
+  plan_grid->addWidget(calib_x_, 1, 1);
+  plan_grid->addWidget(calib_y_, 1, 2, 1, 2);
+  layout->addWidget(plan_widget_);
   connect(plan_opacity_, &QDoubleSpinBox::valueChanged, &model_, [this](double opacity) {
     if (!model_.map().floor_plan || model_.map().floor_plan->opacity == opacity)
       return;
@@ -397,10 +399,10 @@ void EditorPanel::updateActions() {
   paste_->setEnabled(model_.canPaste());
   if (vectorise_ != nullptr)
     vectorise_->setEnabled(model_.map().raster && !model_.map().raster->raster.empty());
-  if (remove_plan_ != nullptr) {
+  if (plan_widget_ != nullptr) {
     const bool plan = model_.map().floor_plan.has_value();
     remove_plan_->setEnabled(plan);
-    plan_opacity_->setEnabled(plan);
+    plan_widget_->setVisible(plan);
     if (plan && plan_opacity_->value() != model_.map().floor_plan->opacity) {
       const QSignalBlocker block(plan_opacity_);
       plan_opacity_->setValue(model_.map().floor_plan->opacity);

@@ -86,6 +86,7 @@ class EditorPanel : public QWidget {
   QDoubleSpinBox* calib_x_ = nullptr;
   QDoubleSpinBox* calib_y_ = nullptr;
   QDoubleSpinBox* plan_opacity_ = nullptr;
+  QWidget* plan_widget_ = nullptr;  // remove, opacity, calibration: shown with a plan
   QAction* copy_ = nullptr;
   QAction* paste_ = nullptr;
   QAction* delete_ = nullptr;
