@@ -35,8 +35,15 @@ CeilingRect lightRect(const CeilingLight& light) {
 CeilingScene sceneFromMap(const WorldMap& map, double ceiling_height_m) {
   CeilingScene scene;
   scene.ceiling_height_m = ceiling_height_m > 0.0 ? ceiling_height_m : map.ceiling_height_m;
-  for (const CeilingMarker& m : map.markers)
-    scene.markers.push_back({m.position, m.heading_rad, m.size_m, m.size_m});
+  for (const CeilingMarker& m : map.markers) {
+    const CeilingRect rect{m.position, m.heading_rad, m.size_m, m.size_m};
+    if (m.colour == kDefaultMarkerColour) {
+      scene.markers.push_back(rect);
+    } else {  // painted in its own colour: not a marker the detector is meant to find
+      scene.decorations.push_back(
+          {rect, Albedo{m.colour.r / 255.0, m.colour.g / 255.0, m.colour.b / 255.0}});
+    }
+  }
   for (const CeilingLight& l : map.lights)
     scene.lights.push_back(lightRect(l));
   return scene;

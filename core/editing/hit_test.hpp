@@ -17,11 +17,14 @@ struct Hit {
   double distance_m = 0.0;
 };
 
-// Vertices beat the start pose, which beats features, which beat wall pieces and obstacle
-// edges; an obstacle is also hit anywhere inside. Nothing within `tolerance_m` -> nullopt.
+// Vertices (and light ends) beat the start pose, which beats features and graph nodes, which
+// beat markers and lights (hit anywhere on them), which beat graph edges, which beat wall pieces
+// and obstacle edges; an obstacle is also hit anywhere inside. Nothing within `tolerance_m` ->
+// nullopt.
 std::optional<Hit> hitTest(const WorldMap& map, const Vec2& p, double tolerance_m);
 
-// Elements whose every point lies inside the box (the start pose by its position).
+// Elements whose every point lies inside the box (the start pose, markers and nodes by their
+// position, edges by their nodes).
 std::vector<ElementRef> elementsInBox(const WorldMap& map, const Box2& box);
 
 }  // namespace irgs::editing

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <unordered_set>
@@ -36,9 +37,19 @@ const char* kindName(ElementKind kind) {
       return "feature";
     case ElementKind::kStart:
       return "start pose";
+    case ElementKind::kMarker:
+      return "marker";
+    case ElementKind::kLight:
+      return "light";
+    case ElementKind::kNode:
+      return "node";
+    case ElementKind::kEdge:
+      return "edge";
   }
   return "element";
 }
+
+constexpr std::size_t kKindCount = 8;
 
 std::size_t countOf(const WorldMap& map, ElementKind kind) {
   switch (kind) {
@@ -50,6 +61,14 @@ std::size_t countOf(const WorldMap& map, ElementKind kind) {
       return map.features.size();
     case ElementKind::kStart:
       return 1;
+    case ElementKind::kMarker:
+      return map.markers.size();
+    case ElementKind::kLight:
+      return map.lights.size();
+    case ElementKind::kNode:
+      return map.graph.nodes.size();
+    case ElementKind::kEdge:
+      return map.graph.edges.size();
   }
   return 0;
 }
@@ -79,15 +98,68 @@ void checkElement(const Element& element) {
                    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
                      throw std::invalid_argument("start pose is not finite");
                  },
+                 [](const CeilingMarker& m) {
+                   if (!finite(m.position) || !std::isfinite(m.heading_rad))
+                     throw std::invalid_argument("marker pose is not finite");
+                   if (!(std::isfinite(m.size_m) && m.size_m > 0.0))
+                     throw std::invalid_argument("a marker's size must be > 0 m");
+                   for (int c : {m.colour.r, m.colour.g, m.colour.b})
+                     if (c < 0 || c > 255)
+                       throw std::invalid_argument("a marker's colour channels are 0..255");
+                 },
+                 [](const CeilingLight& l) {
+                   if (!finite(l.tube.a) || !finite(l.tube.b))
+                     throw std::invalid_argument("light end is not finite");
+                   if (!((l.tube.b - l.tube.a).norm() > 0.0))
+                     throw std::invalid_argument("a light needs two different ends");
+                   if (!(std::isfinite(l.width_m) && l.width_m > 0.0))
+                     throw std::invalid_argument("a light's width must be > 0 m");
+                 },
+                 [](const TopoNode& n) {
+                   if (!finite(n.position))
+                     throw std::invalid_argument("node position is not finite");
+                 },
+                 [](const TopoEdge& e) {
+                   if (e.from.empty() || e.to.empty())
+                     throw std::invalid_argument("an edge needs two node ids");
+                   if (e.from == e.to)
+                     throw std::invalid_argument("an edge must join two different nodes");
+                   if (e.cost_m && !(std::isfinite(*e.cost_m) && *e.cost_m > 0.0))
+                     throw std::invalid_argument("an edge's given cost must be > 0 m");
+                 },
              },
              element);
 }
 
+bool hasMarker(const WorldMap& map, const std::string& id) {
+  return std::any_of(map.markers.begin(), map.markers.end(),
+                     [&](const CeilingMarker& m) { return m.id == id; });
+}
+
+// Checks of an element against the rest of the map (`skip`: the edge being replaced).
+void checkReferences(const WorldMap& map, const Element& element,
+                     std::optional<std::size_t> skip = std::nullopt) {
+  if (const auto* n = std::get_if<TopoNode>(&element)) {
+    if (!n->marker_id.empty() && !hasMarker(map, n->marker_id))
+      throw std::invalid_argument("node is tied to the unknown marker '" + n->marker_id + "'");
+  } else if (const auto* e = std::get_if<TopoEdge>(&element)) {
+    for (const std::string* id : {&e->from, &e->to})
+      if (map.graph.node(*id) == nullptr)
+        throw std::invalid_argument("edge names the unknown node '" + *id + "'");
+    for (std::size_t i = 0; i < map.graph.edges.size(); ++i) {
+      const TopoEdge& o = map.graph.edges[i];
+      if (skip && *skip == i)
+        continue;
+      if ((o.from == e->from && o.to == e->to) || (o.from == e->to && o.to == e->from))
+        throw std::invalid_argument("nodes '" + e->from + "' and '" + e->to +
+                                    "' are already joined by an edge");
+    }
+  }
+}
+
 void setId(Element& element, std::string id) {
-  std::visit(
-      Overloaded{[&](Wall& w) { w.id = std::move(id); }, [&](Obstacle& o) { o.id = std::move(id); },
-                 [&](PointFeature& f) { f.id = std::move(id); }, [](Pose2&) {}},
-      element);
+  std::visit(Overloaded{[](Pose2&) {}, [](TopoEdge&) {}, [&](auto& e) { e.id = std::move(id); }},
+             element);
 }
 
 // Obstacles are stored counter-clockwise (as the loader does); the start heading is wrapped.
@@ -97,19 +169,43 @@ Element normalised(Element element) {
       std::reverse(o->polygon.begin(), o->polygon.end());
   } else if (auto* p = std::get_if<Pose2>(&element)) {
     p->theta = wrapAngle(p->theta);
+  } else if (auto* m = std::get_if<CeilingMarker>(&element)) {
+    m->heading_rad = wrapAngle(m->heading_rad);
   }
   return element;
 }
 
-std::unordered_set<std::string> usedIds(const WorldMap& map) {
+// Ids in the group of `kind` (see the header): walls, obstacles and features share one.
+std::unordered_set<std::string> usedIds(const WorldMap& map,
+                                        ElementKind kind = ElementKind::kWall) {
   std::unordered_set<std::string> ids;
-  for (const Wall& w : map.walls)
-    ids.insert(w.id);
-  for (const Obstacle& o : map.obstacles)
-    ids.insert(o.id);
-  for (const PointFeature& f : map.features)
-    ids.insert(f.id);
+  switch (kind) {
+    case ElementKind::kMarker:
+      for (const CeilingMarker& m : map.markers)
+        ids.insert(m.id);
+      break;
+    case ElementKind::kLight:
+      for (const CeilingLight& l : map.lights)
+        ids.insert(l.id);
+      break;
+    case ElementKind::kNode:
+      for (const TopoNode& n : map.graph.nodes)
+        ids.insert(n.id);
+      break;
+    default:
+      for (const Wall& w : map.walls)
+        ids.insert(w.id);
+      for (const Obstacle& o : map.obstacles)
+        ids.insert(o.id);
+      for (const PointFeature& f : map.features)
+        ids.insert(f.id);
+      break;
+  }
   return ids;
+}
+
+bool hasId(ElementKind kind) {
+  return kind != ElementKind::kStart && kind != ElementKind::kEdge;
 }
 
 std::string freshId(std::unordered_set<std::string>& used, std::string_view prefix) {
@@ -130,6 +226,14 @@ std::string_view idPrefix(ElementKind kind) {
       return "feature";
     case ElementKind::kStart:
       return "start";
+    case ElementKind::kMarker:
+      return "marker";
+    case ElementKind::kLight:
+      return "light";
+    case ElementKind::kNode:
+      return "node";
+    case ElementKind::kEdge:
+      return "edge";
   }
   return "element";
 }
@@ -186,6 +290,18 @@ void perform(WorldMap& map, const Change& change, const std::optional<Element>& 
         throw std::logic_error("the start pose can only be replaced");
       map.start = std::get<Pose2>(*to);
       break;
+    case ElementKind::kMarker:
+      performOn(map.markers, change.index, from, to);
+      break;
+    case ElementKind::kLight:
+      performOn(map.lights, change.index, from, to);
+      break;
+    case ElementKind::kNode:
+      performOn(map.graph.nodes, change.index, from, to);
+      break;
+    case ElementKind::kEdge:
+      performOn(map.graph.edges, change.index, from, to);
+      break;
   }
 }
 
@@ -201,18 +317,46 @@ std::vector<ElementRef> cleanRefs(const WorldMap& map, const std::vector<Element
   return {unique.begin(), unique.end()};
 }
 
+// Nodes that go along when the referenced elements move or rotate (and are not referenced
+// themselves): those tied to a referenced marker, and the ends of a referenced edge (an edge has
+// no points of its own: moving it moves its nodes).
+std::vector<ElementRef> tiedNodes(const WorldMap& map, const std::vector<ElementRef>& refs) {
+  std::set<std::string> markers, ends;
+  for (const ElementRef& r : refs) {
+    if (r.kind == ElementKind::kMarker) {
+      markers.insert(map.markers[r.index].id);
+    } else if (r.kind == ElementKind::kEdge) {
+      ends.insert(map.graph.edges[r.index].from);
+      ends.insert(map.graph.edges[r.index].to);
+    }
+  }
+  std::vector<ElementRef> out;
+  for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
+    const ElementRef ref{ElementKind::kNode, i};
+    const TopoNode& n = map.graph.nodes[i];
+    const bool tied = !n.marker_id.empty() && markers.count(n.marker_id) > 0;
+    if ((tied || ends.count(n.id) > 0) && std::find(refs.begin(), refs.end(), ref) == refs.end())
+      out.push_back(ref);
+  }
+  return out;
+}
+
 template <class F>
 Edit transformEach(const WorldMap& map, const std::vector<ElementRef>& refs, std::string label,
                    F transform) {
   Edit edit;
   edit.label = std::move(label);
-  for (const ElementRef& r : cleanRefs(map, refs)) {
+  const std::vector<ElementRef> clean = cleanRefs(map, refs);
+  std::vector<ElementRef> all = clean;
+  for (const ElementRef& r : tiedNodes(map, clean))
+    all.push_back(r);
+  for (const ElementRef& r : all) {
     Element before = elementAt(map, r);
     Element after = normalised(transform(before));
     checkElement(after);
     edit.changes.push_back({r.kind, r.index, std::move(before), std::move(after)});
-    edit.selection_after.push_back(r);
   }
+  edit.selection_after = clean;
   return edit;
 }
 
@@ -222,7 +366,11 @@ ElementKind kindOf(const Element& element) {
   return std::visit(Overloaded{[](const Wall&) { return ElementKind::kWall; },
                                [](const Obstacle&) { return ElementKind::kObstacle; },
                                [](const PointFeature&) { return ElementKind::kFeature; },
-                               [](const Pose2&) { return ElementKind::kStart; }},
+                               [](const Pose2&) { return ElementKind::kStart; },
+                               [](const CeilingMarker&) { return ElementKind::kMarker; },
+                               [](const CeilingLight&) { return ElementKind::kLight; },
+                               [](const TopoNode&) { return ElementKind::kNode; },
+                               [](const TopoEdge&) { return ElementKind::kEdge; }},
                     element);
 }
 
@@ -243,15 +391,22 @@ Element elementAt(const WorldMap& map, const ElementRef& ref) {
       return map.features[ref.index];
     case ElementKind::kStart:
       break;
+    case ElementKind::kMarker:
+      return map.markers[ref.index];
+    case ElementKind::kLight:
+      return map.lights[ref.index];
+    case ElementKind::kNode:
+      return map.graph.nodes[ref.index];
+    case ElementKind::kEdge:
+      return map.graph.edges[ref.index];
   }
   return map.start;
 }
 
 std::string elementId(const Element& element) {
   return std::visit(
-      Overloaded{[](const Wall& w) { return w.id; }, [](const Obstacle& o) { return o.id; },
-                 [](const PointFeature& f) { return f.id; },
-                 [](const Pose2&) { return std::string(); }},
+      Overloaded{[](const Pose2&) { return std::string(); },
+                 [](const TopoEdge&) { return std::string(); }, [](const auto& e) { return e.id; }},
       element);
 }
 
@@ -259,6 +414,8 @@ std::string describe(const Element& element) {
   const ElementKind kind = kindOf(element);
   if (kind == ElementKind::kStart)
     return kindName(kind);
+  if (const auto* e = std::get_if<TopoEdge>(&element))
+    return "edge '" + e->from + "' " + (e->bidirectional ? "-" : "->") + " '" + e->to + "'";
   return std::string(kindName(kind)) + " '" + elementId(element) + "'";
 }
 
@@ -273,9 +430,35 @@ Box2 elementBounds(const Element& element) {
                             box.extend(p);
                         },
                         [&](const PointFeature& f) { box.extend(f.position); },
-                        [&](const Pose2& p) { box.extend(p.position()); }},
+                        [&](const Pose2& p) { box.extend(p.position()); },
+                        [&](const CeilingMarker& m) { box.extend(m.position); },
+                        [&](const CeilingLight& l) {
+                          box.extend(l.tube.a);
+                          box.extend(l.tube.b);
+                        },
+                        [&](const TopoNode& n) { box.extend(n.position); }, [](const TopoEdge&) {}},
              element);
   return box;
+}
+
+std::vector<Vec2> elementPoints(const WorldMap& map, const Element& element) {
+  return std::visit(Overloaded{[](const Wall& w) { return w.points; },
+                               [](const Obstacle& o) { return o.polygon; },
+                               [](const PointFeature& f) { return std::vector<Vec2>{f.position}; },
+                               [](const Pose2& p) { return std::vector<Vec2>{p.position()}; },
+                               [](const CeilingMarker& m) { return std::vector<Vec2>{m.position}; },
+                               [](const CeilingLight& l) {
+                                 return std::vector<Vec2>{l.tube.a, l.tube.b};
+                               },
+                               [](const TopoNode& n) { return std::vector<Vec2>{n.position}; },
+                               [&](const TopoEdge& e) {
+                                 std::vector<Vec2> out;
+                                 for (const std::string* id : {&e.from, &e.to})
+                                   if (const TopoNode* n = map.graph.node(*id))
+                                     out.push_back(n->position);
+                                 return out;
+                               }},
+                    element);
 }
 
 Element translated(const Element& element, const Vec2& delta) {
@@ -292,7 +475,13 @@ Element translated(const Element& element, const Vec2& delta) {
                         [&](Pose2& p) {
                           p.x += delta.x();
                           p.y += delta.y();
-                        }},
+                        },
+                        [&](CeilingMarker& m) { m.position += delta; },
+                        [&](CeilingLight& l) {
+                          l.tube.a += delta;
+                          l.tube.b += delta;
+                        },
+                        [&](TopoNode& n) { n.position += delta; }, [](TopoEdge&) {}},
              out);
   return out;
 }
@@ -312,7 +501,17 @@ Element rotated(const Element& element, double angle_rad, const Vec2& pivot) {
                  [&](Pose2& p) {
                    const Vec2 q = rotatePoint(p.position(), angle_rad, pivot);
                    p = Pose2{q.x(), q.y(), wrapAngle(p.theta + angle_rad)};
-                 }},
+                 },
+                 [&](CeilingMarker& m) {
+                   m.position = rotatePoint(m.position, angle_rad, pivot);
+                   m.heading_rad = wrapAngle(m.heading_rad + angle_rad);
+                 },
+                 [&](CeilingLight& l) {
+                   l.tube.a = rotatePoint(l.tube.a, angle_rad, pivot);
+                   l.tube.b = rotatePoint(l.tube.b, angle_rad, pivot);
+                 },
+                 [&](TopoNode& n) { n.position = rotatePoint(n.position, angle_rad, pivot); },
+                 [](TopoEdge&) {}},
       out);
   return out;
 }
@@ -335,6 +534,8 @@ void applyEdit(WorldMap& map, const Edit& edit) {
   }
   if (edit.raster)
     map.raster = edit.raster->after;
+  if (edit.floor_plan)
+    map.floor_plan = edit.floor_plan->after;
 }
 
 void revertEdit(WorldMap& map, const Edit& edit) {
@@ -353,6 +554,26 @@ void revertEdit(WorldMap& map, const Edit& edit) {
   }  // The raster layer is independent of the elements: its order among the changes is free.
   if (edit.raster)
     map.raster = edit.raster->before;
+  if (edit.floor_plan)
+    map.floor_plan = edit.floor_plan->before;
+}
+
+Edit setFloorPlan(const WorldMap& map, std::optional<FloorPlan> plan, std::string label) {
+  if (plan) {
+    if (plan->source.empty())
+      throw std::invalid_argument("floor plan: no image file");
+    if (!(std::isfinite(plan->metres_per_pixel) && plan->metres_per_pixel > 0.0))
+      throw std::invalid_argument("floor plan: the scale must be > 0 m per pixel");
+    if (!finite(plan->origin) || !std::isfinite(plan->rotation_rad))
+      throw std::invalid_argument("floor plan: origin or rotation is not finite");
+    if (!(plan->opacity >= 0.0 && plan->opacity <= 1.0))
+      throw std::invalid_argument("floor plan: the opacity must be from 0 to 1");
+    plan->rotation_rad = wrapAngle(plan->rotation_rad);
+  }
+  Edit edit;
+  edit.label = plan ? std::move(label) : "Remove floor plan";
+  edit.floor_plan = FloorPlanChange{map.floor_plan, std::move(plan)};
+  return edit;
 }
 
 Edit setRasterLayer(const WorldMap& map, std::optional<RasterLayer> layer) {
@@ -381,10 +602,11 @@ Edit addElement(const WorldMap& map, Element element) {
   const ElementKind kind = kindOf(element);
   if (kind == ElementKind::kStart)
     return setStart(map, std::get<Pose2>(element));
-  std::unordered_set<std::string> used = usedIds(map);
+  std::unordered_set<std::string> used = usedIds(map, kind);
   const std::string id = elementId(element);
-  if (id.empty() || used.count(id) > 0)
+  if (hasId(kind) && (id.empty() || used.count(id) > 0))
     setId(element, freshId(used, idPrefix(kind)));
+  checkReferences(map, element);
   Edit edit;
   edit.label = std::string("Add ") + kindName(kind);
   const std::size_t index = countOf(map, kind);
@@ -410,14 +632,42 @@ Edit replaceElement(const WorldMap& map, const ElementRef& ref, Element element,
     throw std::invalid_argument("replaceElement: the new element is of another kind");
   checkElement(element);
   const std::string id = elementId(element);
-  if (ref.kind != ElementKind::kStart && id != elementId(before)) {
-    if (id.empty() || usedIds(map).count(id) > 0)
-      throw std::invalid_argument("id '" + id + "' is empty or already used");
-  }
+  const std::string old_id = elementId(before);
+  const bool renamed = hasId(ref.kind) && id != old_id;
+  if (renamed && (id.empty() || usedIds(map, ref.kind).count(id) > 0))
+    throw std::invalid_argument("id '" + id + "' is empty or already used");
+  checkReferences(
+      map, element,
+      ref.kind == ElementKind::kEdge ? std::optional<std::size_t>(ref.index) : std::nullopt);
   Edit edit;
   edit.label = std::move(label);
   edit.changes.push_back({ref.kind, ref.index, std::move(before), normalised(std::move(element))});
   edit.selection_after.push_back(ref);
+  // References follow a renamed marker (the nodes tied to it) or node (its edges); the nodes
+  // tied to a marker also follow its new position.
+  if (ref.kind == ElementKind::kMarker && !old_id.empty()) {
+    const Vec2 shift = std::get<CeilingMarker>(edit.changes.front().after.value()).position -
+                       std::get<CeilingMarker>(edit.changes.front().before.value()).position;
+    for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
+      if (map.graph.nodes[i].marker_id != old_id || (!renamed && shift.norm() == 0.0))
+        continue;
+      TopoNode n = map.graph.nodes[i];
+      n.marker_id = id;
+      n.position += shift;
+      edit.changes.push_back({ElementKind::kNode, i, Element(map.graph.nodes[i]), Element(n)});
+    }
+  } else if (renamed && ref.kind == ElementKind::kNode) {
+    for (std::size_t i = 0; i < map.graph.edges.size(); ++i) {
+      TopoEdge e = map.graph.edges[i];
+      if (e.from != old_id && e.to != old_id)
+        continue;
+      if (e.from == old_id)
+        e.from = id;
+      if (e.to == old_id)
+        e.to = id;
+      edit.changes.push_back({ElementKind::kEdge, i, Element(map.graph.edges[i]), Element(e)});
+    }
+  }
   return edit;
 }
 
@@ -428,6 +678,12 @@ Edit moveVertex(const WorldMap& map, const ElementRef& ref, std::size_t vertex, 
     points = &w->points;
   else if (auto* o = std::get_if<Obstacle>(&element))
     points = &o->polygon;
+  if (auto* l = std::get_if<CeilingLight>(&element)) {
+    if (vertex > 1)
+      throw std::out_of_range("moveVertex: a light has two ends");
+    (vertex == 0 ? l->tube.a : l->tube.b) = to;
+    return replaceElement(map, ref, std::move(element), "Move light end");
+  }
   if (points == nullptr || vertex >= points->size())
     throw std::out_of_range("moveVertex: no such vertex");
   (*points)[vertex] = to;
@@ -449,21 +705,52 @@ Edit rotateElements(const WorldMap& map, const std::vector<ElementRef>& refs, do
 }
 
 Edit deleteElements(const WorldMap& map, const std::vector<ElementRef>& refs) {
-  std::vector<ElementRef> sorted = cleanRefs(map, refs);
+  std::set<ElementRef> doomed;
+  for (const ElementRef& r : cleanRefs(map, refs))
+    if (r.kind != ElementKind::kStart)
+      doomed.insert(r);
+  // A deleted node takes its edges along.
+  std::set<std::string> nodes, markers;
+  for (const ElementRef& r : doomed) {
+    if (r.kind == ElementKind::kNode)
+      nodes.insert(map.graph.nodes[r.index].id);
+    else if (r.kind == ElementKind::kMarker)
+      markers.insert(map.markers[r.index].id);
+  }
+  for (std::size_t i = 0; i < map.graph.edges.size(); ++i) {
+    const TopoEdge& e = map.graph.edges[i];
+    if (nodes.count(e.from) > 0 || nodes.count(e.to) > 0)
+      doomed.insert({ElementKind::kEdge, i});
+  }
   Edit edit;
   edit.label = "Delete";
-  // Highest index first within each kind, so earlier erasures do not shift later ones.
-  for (auto it = sorted.rbegin(); it != sorted.rend(); ++it) {
-    if (it->kind == ElementKind::kStart)
+  // Untie the surviving nodes of deleted markers first, while every index is the original one.
+  for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
+    const TopoNode& n = map.graph.nodes[i];
+    if (n.marker_id.empty() || markers.count(n.marker_id) == 0 ||
+        doomed.count({ElementKind::kNode, i}) > 0)
       continue;
-    edit.changes.push_back({it->kind, it->index, elementAt(map, *it), std::nullopt});
+    TopoNode untied = n;
+    untied.marker_id.clear();
+    edit.changes.push_back({ElementKind::kNode, i, Element(n), Element(untied)});
   }
+  // Highest index first within each kind, so earlier erasures do not shift later ones.
+  for (auto it = doomed.rbegin(); it != doomed.rend(); ++it)
+    edit.changes.push_back({it->kind, it->index, elementAt(map, *it), std::nullopt});
   return edit;
 }
 
 Clipboard copyElements(const WorldMap& map, const std::vector<ElementRef>& refs) {
   Clipboard out;
+  std::set<std::string> nodes;
   for (const ElementRef& r : cleanRefs(map, refs)) {
+    if (r.kind == ElementKind::kNode)
+      nodes.insert(map.graph.nodes[r.index].id);
+    if (r.kind == ElementKind::kEdge) {
+      const TopoEdge& e = map.graph.edges[r.index];
+      if (nodes.count(e.from) == 0 || nodes.count(e.to) == 0)
+        continue;  // kinds are in order: the nodes came first
+    }
     if (r.kind != ElementKind::kStart)
       out.push_back(elementAt(map, r));
   }
@@ -473,18 +760,47 @@ Clipboard copyElements(const WorldMap& map, const std::vector<ElementRef>& refs)
 Edit pasteElements(const WorldMap& map, const Clipboard& clipboard, const Vec2& offset) {
   if (!finite(offset))
     throw std::invalid_argument("pasteElements: offset is not finite");
-  std::unordered_set<std::string> used = usedIds(map);
+  std::unordered_set<std::string> used[kKindCount];
+  std::size_t next[kKindCount];
+  for (std::size_t k = 0; k < kKindCount; ++k) {
+    const auto kind = static_cast<ElementKind>(k);
+    // The group of walls, obstacles and features is one set: slot 0 stands for all three.
+    used[k] = usedIds(map, kind);
+    next[k] = countOf(map, kind);
+  }
+  auto group = [](ElementKind kind) {
+    return kind == ElementKind::kObstacle || kind == ElementKind::kFeature
+               ? std::size_t{0}
+               : static_cast<std::size_t>(kind);
+  };
+  std::map<std::string, std::string> marker_ids, node_ids;  // copied id -> pasted id
   Edit edit;
   edit.label = "Paste";
-  std::size_t next[3] = {map.walls.size(), map.obstacles.size(), map.features.size()};
   for (const Element& source : clipboard) {
     const ElementKind kind = kindOf(source);
     if (kind == ElementKind::kStart)
       continue;
     Element e = normalised(translated(source, offset));
     checkElement(e);
-    setId(e, freshId(used, idPrefix(kind)));
-    const std::size_t index = next[static_cast<int>(kind)]++;
+    if (hasId(kind)) {
+      const std::string fresh = freshId(used[group(kind)], idPrefix(kind));
+      if (kind == ElementKind::kMarker)
+        marker_ids[elementId(source)] = fresh;
+      else if (kind == ElementKind::kNode)
+        node_ids[elementId(source)] = fresh;
+      setId(e, fresh);
+    }
+    if (auto* n = std::get_if<TopoNode>(&e)) {
+      const auto tie = marker_ids.find(n->marker_id);
+      n->marker_id = tie == marker_ids.end() ? std::string() : tie->second;
+    } else if (auto* ed = std::get_if<TopoEdge>(&e)) {
+      const auto a = node_ids.find(ed->from), b = node_ids.find(ed->to);
+      if (a == node_ids.end() || b == node_ids.end())
+        continue;  // an edge is pasted only with both of its nodes
+      ed->from = a->second;
+      ed->to = b->second;
+    }
+    const std::size_t index = next[static_cast<std::size_t>(kind)]++;
     edit.changes.push_back({kind, index, std::nullopt, std::move(e)});
     edit.selection_after.push_back({kind, index});
   }
@@ -503,6 +819,10 @@ Edit replaceContents(const WorldMap& current, const WorldMap& target, std::strin
   replaceKind(ElementKind::kWall, current.walls, target.walls);
   replaceKind(ElementKind::kObstacle, current.obstacles, target.obstacles);
   replaceKind(ElementKind::kFeature, current.features, target.features);
+  replaceKind(ElementKind::kEdge, current.graph.edges, target.graph.edges);
+  replaceKind(ElementKind::kNode, current.graph.nodes, target.graph.nodes);
+  replaceKind(ElementKind::kMarker, current.markers, target.markers);
+  replaceKind(ElementKind::kLight, current.lights, target.lights);
   if (!(current.start == target.start))
     edit.changes.push_back({ElementKind::kStart, 0, Element(current.start), Element(target.start)});
   return edit;
@@ -512,7 +832,8 @@ Vec2 selectionCentre(const WorldMap& map, const std::vector<ElementRef>& refs) {
   Box2 box;
   for (const ElementRef& r : refs) {
     if (isValidRef(map, r))
-      box.extend(elementBounds(elementAt(map, r)));
+      for (const Vec2& p : elementPoints(map, elementAt(map, r)))
+        box.extend(p);
   }
   return box.empty() ? Vec2::Zero() : Vec2((box.min + box.max) / 2.0);
 }

@@ -75,6 +75,20 @@ std::vector<Vec2> snapTargets(const WorldMap& map, const std::vector<ElementRef>
   }
   if (!excluded(ElementKind::kStart, 0))
     out.push_back(map.start.position());
+  for (std::size_t i = 0; i < map.markers.size(); ++i) {
+    if (!excluded(ElementKind::kMarker, i))
+      out.push_back(map.markers[i].position);
+  }
+  for (std::size_t i = 0; i < map.lights.size(); ++i) {
+    if (!excluded(ElementKind::kLight, i)) {
+      const Segment& t = map.lights[i].tube;
+      out.insert(out.end(), {t.a, t.b, Vec2((t.a + t.b) / 2.0)});
+    }
+  }
+  for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
+    if (!excluded(ElementKind::kNode, i))
+      out.push_back(map.graph.nodes[i].position);
+  }
   return out;
 }
 

@@ -36,7 +36,8 @@ SnapResult snapPoint(const Vec2& raw, const SnapSettings& settings,
                      const std::vector<Vec2>& targets,
                      const std::optional<Vec2>& anchor = std::nullopt);
 
-// Every point worth snapping to: wall points, obstacle vertices, features, the start position;
+// Every point worth snapping to: wall points, obstacle vertices, features, the start position,
+// marker centres, light ends and midpoints, graph nodes;
 // elements in `exclude` are left out (the ones being moved).
 std::vector<Vec2> snapTargets(const WorldMap& map, const std::vector<ElementRef>& exclude = {});
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 #include "core/editing/edit_geometry.hpp"
@@ -230,6 +233,126 @@ void checkDegenerate(const WorldMap& map, const ValidationSettings& s, std::vect
   }
 }
 
+MapIssue issueAt(IssueKind kind, Severity severity, std::vector<ElementRef> elements,
+                 const Vec2& position, std::string message) {
+  MapIssue issue;
+  issue.kind = kind;
+  issue.severity = severity;
+  issue.elements = std::move(elements);
+  issue.position = position;
+  issue.message = std::move(message);
+  return issue;
+}
+
+// Ids repeated within markers, lights or nodes (the file format refuses them; an edit may not
+// make them, but a map assembled in code can).
+template <class T>
+void checkDuplicateIds(const std::vector<T>& items, ElementKind kind, const char* what,
+                       const std::function<Vec2(const T&)>& where, std::vector<MapIssue>& out) {
+  std::map<std::string, std::size_t> first;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].id.empty())
+      continue;
+    const auto [it, fresh] = first.emplace(items[i].id, i);
+    if (!fresh)
+      out.push_back(issueAt(IssueKind::kDuplicateId, Severity::kError,
+                            {ElementRef{kind, it->second}, ElementRef{kind, i}}, where(items[i]),
+                            std::string(what) + " id '" + items[i].id + "' is used twice"));
+  }
+}
+
+void checkCeiling(const WorldMap& map, const ValidationSettings& s, std::vector<MapIssue>& out) {
+  checkDuplicateIds<CeilingMarker>(
+      map.markers, ElementKind::kMarker, "marker",
+      [](const CeilingMarker& m) { return m.position; }, out);
+  checkDuplicateIds<CeilingLight>(
+      map.lights, ElementKind::kLight, "light",
+      [](const CeilingLight& l) { return Vec2((l.tube.a + l.tube.b) / 2.0); }, out);
+  // "The map" is what the robot drives in: walls, obstacles and the raster layer.
+  Box2 floor;
+  for (const Wall& w : map.walls)
+    for (const Vec2& p : w.points)
+      floor.extend(p);
+  for (const Obstacle& o : map.obstacles)
+    for (const Vec2& p : o.polygon)
+      floor.extend(p);
+  if (map.raster && !map.raster->raster.empty())
+    floor.extend(map.raster->raster.bounds());
+  if (floor.empty())
+    return;
+  floor.min -= Vec2(s.join_tolerance_m, s.join_tolerance_m);
+  floor.max += Vec2(s.join_tolerance_m, s.join_tolerance_m);
+  for (std::size_t i = 0; i < map.markers.size(); ++i) {
+    const CeilingMarker& m = map.markers[i];
+    if (!floor.contains(m.position))
+      out.push_back(issueAt(IssueKind::kOutsideMap, Severity::kWarning,
+                            {ElementRef{ElementKind::kMarker, i}}, m.position,
+                            "marker '" + m.id + "' is outside the map (no robot passes under it)"));
+  }
+  for (std::size_t i = 0; i < map.lights.size(); ++i) {
+    const CeilingLight& l = map.lights[i];
+    if (!floor.contains(l.tube.a) || !floor.contains(l.tube.b))
+      out.push_back(issueAt(IssueKind::kOutsideMap, Severity::kWarning,
+                            {ElementRef{ElementKind::kLight, i}}, (l.tube.a + l.tube.b) / 2.0,
+                            "light '" + l.id + "' reaches outside the map"));
+  }
+  for (std::size_t i = 0; i < map.graph.nodes.size(); ++i) {
+    const TopoNode& n = map.graph.nodes[i];
+    if (!floor.contains(n.position))
+      out.push_back(issueAt(IssueKind::kOutsideMap, Severity::kWarning,
+                            {ElementRef{ElementKind::kNode, i}}, n.position,
+                            "node '" + n.id + "' is outside the map"));
+  }
+}
+
+void checkGraph(const WorldMap& map, std::vector<MapIssue>& out) {
+  const TopoGraph& g = map.graph;
+  checkDuplicateIds<TopoNode>(
+      g.nodes, ElementKind::kNode, "node", [](const TopoNode& n) { return n.position; }, out);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const TopoNode& n = g.nodes[i];
+    if (n.marker_id.empty())
+      continue;
+    const auto m = std::find_if(map.markers.begin(), map.markers.end(),
+                                [&](const CeilingMarker& c) { return c.id == n.marker_id; });
+    if (m == map.markers.end())
+      out.push_back(issueAt(
+          IssueKind::kMissingMarker, Severity::kError, {ElementRef{ElementKind::kNode, i}},
+          n.position, "node '" + n.id + "' is tied to the missing marker '" + n.marker_id + "'"));
+  }
+  std::set<std::pair<std::string, std::string>> seen;
+  for (std::size_t i = 0; i < g.edges.size(); ++i) {
+    const TopoEdge& e = g.edges[i];
+    const TopoNode* a = g.node(e.from);
+    const TopoNode* b = g.node(e.to);
+    const ElementRef self{ElementKind::kEdge, i};
+    if (a == nullptr || b == nullptr) {
+      const std::string& missing = a == nullptr ? e.from : e.to;
+      const TopoNode* other = a == nullptr ? b : a;
+      out.push_back(issueAt(
+          IssueKind::kMissingNode, Severity::kError, {self}, other ? other->position : Vec2::Zero(),
+          "edge '" + e.from + "' - '" + e.to + "' names the missing node '" + missing + "'"));
+      continue;
+    }
+    const Vec2 mid = (a->position + b->position) / 2.0;
+    if (e.from == e.to) {
+      out.push_back(issueAt(IssueKind::kDegenerateElement, Severity::kError, {self}, mid,
+                            "edge '" + e.from + "' joins the node to itself"));
+      continue;
+    }
+    const auto key = std::minmax(e.from, e.to);
+    if (!seen.emplace(key.first, key.second).second)
+      out.push_back(issueAt(IssueKind::kDuplicateEdge, Severity::kWarning, {self}, mid,
+                            "edge '" + e.from + "' - '" + e.to + "' repeats an earlier edge"));
+    const double chord = (b->position - a->position).norm();
+    if (e.cost_m && *e.cost_m < chord - 1e-9)
+      out.push_back(issueAt(IssueKind::kEdgeCostBelowDistance, Severity::kWarning, {self}, mid,
+                            "edge '" + e.from + "' - '" + e.to + "' costs " + metres(*e.cost_m) +
+                                ", less than the " + metres(chord) +
+                                " between its nodes (a corridor is never shorter)"));
+  }
+}
+
 }  // namespace
 
 std::vector<MapIssue> validateMap(const WorldMap& map, const ValidationSettings& settings) {
@@ -243,6 +366,8 @@ std::vector<MapIssue> validateMap(const WorldMap& map, const ValidationSettings&
   checkOverlaps(map, settings, out);
   checkStart(map, settings, out);
   checkDegenerate(map, settings, out);
+  checkCeiling(map, settings, out);
+  checkGraph(map, out);
   return out;
 }
 

@@ -7,7 +7,12 @@
 //     polygons overlap;
 //   - the start pose inside a wall: within the robot radius of a wall piece or obstacle edge, or
 //     inside an obstacle;
-//   - degenerate elements: zero-length walls, obstacles with (near) zero area.
+//   - degenerate elements: zero-length walls, obstacles with (near) zero area, an edge joining a
+//     node to itself;
+//   - the ceiling and the graph: markers, lights and nodes outside the map (the bounds of walls,
+//     obstacles and the raster), repeated marker, light or node ids, a node tied to a missing
+//     marker, an edge naming a missing node, a repeated edge, an edge whose given cost is less
+//     than the distance between its nodes.
 // World metres.
 
 #include <string>
@@ -32,6 +37,12 @@ enum class IssueKind {
   kOverlappingObstacles,
   kStartInWall,
   kDegenerateElement,
+  kOutsideMap,
+  kDuplicateId,
+  kMissingMarker,
+  kMissingNode,
+  kDuplicateEdge,
+  kEdgeCostBelowDistance,
 };
 
 struct MapIssue {

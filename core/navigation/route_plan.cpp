@@ -65,24 +65,34 @@ RoutePlan planRoute(const TopoGraph& graph, const std::string& start_id,
     return plan;
   }
   const std::size_t n = graph.nodes.size();
-  std::vector<std::vector<std::size_t>> adjacent(n);
+  const auto pos = [&](std::size_t i) { return graph.nodes[i].position; };
+  // (neighbour, corridor length) per node.
+  std::vector<std::vector<std::pair<std::size_t, double>>> adjacent(n);
+  bool chord_admissible = true;
   for (const TopoEdge& e : graph.edges) {
     const auto a = index.find(e.from), b = index.find(e.to);
     if (a == index.end() || b == index.end())
       continue;
-    adjacent[a->second].push_back(b->second);
+    const double chord = (pos(b->second) - pos(a->second)).norm();
+    const double length = e.cost_m ? *e.cost_m : chord;
+    chord_admissible = chord_admissible && length >= chord;
+    adjacent[a->second].emplace_back(b->second, length);
     if (e.bidirectional)
-      adjacent[b->second].push_back(a->second);
+      adjacent[b->second].emplace_back(a->second, length);
   }
-  const auto pos = [&](std::size_t i) { return graph.nodes[i].position; };
   const std::size_t goal = g->second;
+  // A given corridor length shorter than its chord would make the straight-line heuristic
+  // overestimate; the search then runs without one (Dijkstra) and stays optimal.
+  const auto heuristic = [&](std::size_t v) {
+    return chord_admissible ? (pos(v) - pos(goal)).norm() : 0.0;
+  };
   std::vector<double> cost(n, std::numeric_limits<double>::infinity());
   std::vector<std::size_t> parent(n, n);
   std::vector<bool> closed(n, false);
   using Entry = std::pair<double, std::size_t>;  // f, node; ties to the lower index
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
   cost[s->second] = 0.0;
-  open.emplace((pos(s->second) - pos(goal)).norm(), s->second);
+  open.emplace(heuristic(s->second), s->second);
   while (!open.empty()) {
     const std::size_t u = open.top().second;
     open.pop();
@@ -92,12 +102,12 @@ RoutePlan planRoute(const TopoGraph& graph, const std::string& start_id,
     ++plan.expansions;
     if (u == goal)
       break;
-    for (const std::size_t v : adjacent[u]) {
-      const double c = cost[u] + (pos(v) - pos(u)).norm();
+    for (const auto& [v, length] : adjacent[u]) {
+      const double c = cost[u] + length;
       if (c < cost[v]) {
         cost[v] = c;
         parent[v] = u;
-        open.emplace(c + (pos(v) - pos(goal)).norm(), v);
+        open.emplace(c + heuristic(v), v);
       }
     }
   }

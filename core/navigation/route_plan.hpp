@@ -1,7 +1,8 @@
 #pragma once
 // Global planning on the topological graph (002_… 3.6, Fig. 15): A* from a start node to a goal
-// node, edge cost = corridor length (the straight distance between the two nodes, A002 "edge
-// cost not specified"), then the action the robot performs at each marker on the route.
+// node, edge cost = corridor length (the edge's cost_m when the map gives it, else the straight
+// distance between the two nodes, A002 "edge cost not specified"), then the action the robot
+// performs at each marker on the route.
 
 #include <string>
 #include <vector>
@@ -35,7 +36,8 @@ struct RoutePlan {
 // A turn smaller than this (either way) is "straight" at a marker.
 inline constexpr double kMarkerStraightTolerance_rad = 0.5235987755982988;  // 30 deg
 
-// A* with the straight-line heuristic (admissible: every edge costs at least its chord). Edges
+// A* with the straight-line heuristic (admissible while every edge costs at least its chord; with
+// a given cost below its chord the search runs without a heuristic). Edges
 // marked bidirectional = false are travelled from -> to only. start == goal gives a one-step
 // route whose action is kStop.
 RoutePlan planRoute(const TopoGraph& graph, const std::string& start_id,

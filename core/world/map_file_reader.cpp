@@ -41,6 +41,7 @@ class MapReader : private JsonFieldReader {
   bool readHeader(const json& root);
   void readStart(const json& root, WorldMap& map);
   void readRaster(const json& root, WorldMap& map);
+  void readFloorPlan(const json& root, WorldMap& map);
   void readWalls(const json& root, WorldMap& map);
   void readObstacles(const json& root, WorldMap& map);
   void readFeatures(const json& root, WorldMap& map);
@@ -87,6 +88,7 @@ std::optional<WorldMap> MapReader::readDocument() {
     map.ceiling_height_m = *h;
   readStart(root, map);
   readRaster(root, map);
+  readFloorPlan(root, map);
   readWalls(root, map);
   readObstacles(root, map);
   readFeatures(root, map);
@@ -96,8 +98,8 @@ std::optional<WorldMap> MapReader::readDocument() {
   readMovingObstacles(root, map);
   map.extra = extras(
       root, "",
-      {"format", "version", "name", "ceiling_height_m", "start", "raster", "walls", "obstacles",
-       "features", "ceiling_markers", "ceiling_lights", "graph", "moving_obstacles"});
+      {"format", "version", "name", "ceiling_height_m", "start", "raster", "floor_plan", "walls",
+       "obstacles", "features", "ceiling_markers", "ceiling_lights", "graph", "moving_obstacles"});
   if (hasErrors(diagnostics()))
     return std::nullopt;
   checkPlausibility(map);
@@ -180,6 +182,45 @@ void MapReader::readRaster(const json& root, WorldMap& map) {
   const fs::path absolute = fs::absolute(resolved, ec);
   map.raster = RasterLayer{*path, std::move(*loaded.raster), std::move(extra),
                            ec ? resolved.string() : absolute.lexically_normal().string()};
+}
+
+void MapReader::readFloorPlan(const json& root, WorldMap& map) {
+  const char* p = "/floor_plan";
+  const json* plan = member(root, "", "floor_plan", false);
+  if (plan == nullptr || !expectObject(*plan, p, "a floor plan {\"source\": \"plan.png\", ...}"))
+    return;
+  FloorPlan out;
+  const json* source = member(*plan, p, "source", true, "path of an image file");
+  const auto path = source ? string(*source, "/floor_plan/source") : std::nullopt;
+  if (path && path->empty())
+    error("/floor_plan/source", "must name an image file");
+  const auto scale = positiveNumber(*plan, p, "metres_per_pixel", out.metres_per_pixel, "metres");
+  const bool has_origin = member(*plan, p, "origin", false) != nullptr;
+  const auto origin = has_origin ? pointMember(*plan, p, "origin") : std::optional<Vec2>();
+  const auto rotation = optionalNumber(*plan, p, "rotation_rad", out.rotation_rad);
+  const auto opacity = optionalNumber(*plan, p, "opacity", out.opacity);
+  if (opacity && !(*opacity >= 0.0 && *opacity <= 1.0))
+    error("/floor_plan/opacity", "expected an opacity from 0 to 1");
+  out.extra = extras(*plan, p, {"source", "metres_per_pixel", "origin", "rotation_rad", "opacity"});
+  if (!path || path->empty() || !scale || (has_origin && !origin) || !rotation || !opacity ||
+      !(*opacity >= 0.0 && *opacity <= 1.0))
+    return;
+  out.source = *path;
+  out.metres_per_pixel = *scale;
+  if (has_origin)
+    out.origin = *origin;
+  out.rotation_rad = wrapAngle(*rotation);
+  out.opacity = *opacity;
+  fs::path resolved = *path;
+  if (resolved.is_relative())
+    resolved = base_dir_ / resolved;
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(resolved, ec);
+  out.resolved_path = ec ? resolved.string() : absolute.lexically_normal().string();
+  if (!fs::exists(resolved, ec))
+    warning("/floor_plan/source",
+            "the floor-plan image " + quote(*path) + " (" + resolved.string() + ") does not exist");
+  map.floor_plan = std::move(out);
 }
 
 void MapReader::readWalls(const json& root, WorldMap& map) {
@@ -311,13 +352,21 @@ void MapReader::readMarkers(const json& root, WorldMap& map) {
     const auto position = pointMember(m, p, "position");
     const auto heading = optionalNumber(m, p, "heading_rad", marker.heading_rad);
     const auto size = positiveNumber(m, p, "size_m", marker.size_m, "metres");
-    marker.extra = extras(m, p, {"id", "position", "heading_rad", "size_m"});
-    if (!marker_id || !position || !heading || !size)
+    std::optional<ColourRgb> colour = kDefaultMarkerColour;
+    if (const json* c = member(m, p, "colour", false)) {
+      const auto text = string(*c, child(p, "colour"));
+      colour = text ? parseHexColour(*text) : std::nullopt;
+      if (text && !colour)
+        error(child(p, "colour"), "expected a colour \"#rrggbb\", found " + quote(*text));
+    }
+    marker.extra = extras(m, p, {"id", "position", "heading_rad", "size_m", "colour"});
+    if (!marker_id || !position || !heading || !size || !colour)
       continue;
     marker.id = *marker_id;
     marker.position = *position;
     marker.heading_rad = wrapAngle(*heading);
     marker.size_m = *size;
+    marker.colour = *colour;
     map.markers.push_back(std::move(marker));
   }
 }
@@ -418,9 +467,16 @@ void MapReader::readGraph(const json& root, WorldMap& map) {
         }
       }
       const auto bidirectional = boolean(e, p, "bidirectional", true);
-      edge.extra = extras(e, p, {"from", "to", "bidirectional"});
-      if (!ends[0] || !ends[1] || !bidirectional)
+      std::optional<double> cost;
+      bool cost_ok = true;
+      if (member(e, p, "cost_m", false) != nullptr) {
+        cost = positiveNumber(e, p, "cost_m", 1.0, "metres");
+        cost_ok = cost.has_value();
+      }
+      edge.extra = extras(e, p, {"from", "to", "bidirectional", "cost_m"});
+      if (!ends[0] || !ends[1] || !bidirectional || !cost_ok)
         continue;
+      edge.cost_m = cost;
       if (*ends[0] == *ends[1]) {
         error(child(p, "to"),
               "an edge must join two different nodes (both are " + quote(*ends[0]) + ")");

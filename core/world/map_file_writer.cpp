@@ -43,7 +43,8 @@ void appendExtra(OrderedJson& out, const json& extra) {
   }
 }
 
-OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
+OrderedJson toJson(const WorldMap& map, const std::string& raster_source,
+                   const std::string& plan_source) {
   OrderedJson root = OrderedJson::object();
   root["format"] = kMapFormatName;
   root["version"] = WorldMap::kFormatVersion;
@@ -62,6 +63,18 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
     raster["source"] = raster_source;
     appendExtra(raster, map.raster->extra);
     root["raster"] = std::move(raster);
+  }
+
+  if (map.floor_plan) {  // written only when present, so maps without it keep their bytes
+    const FloorPlan& f = *map.floor_plan;
+    OrderedJson plan = OrderedJson::object();
+    plan["source"] = plan_source;
+    plan["metres_per_pixel"] = finite(f.metres_per_pixel, "/floor_plan/metres_per_pixel");
+    plan["origin"] = pointJson(f.origin, "/floor_plan/origin");
+    plan["rotation_rad"] = finite(f.rotation_rad, "/floor_plan/rotation_rad");
+    plan["opacity"] = finite(f.opacity, "/floor_plan/opacity");
+    appendExtra(plan, f.extra);
+    root["floor_plan"] = std::move(plan);
   }
 
   OrderedJson walls = OrderedJson::array();
@@ -112,6 +125,8 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
     o["position"] = pointJson(m.position, child(p, "position"));
     o["heading_rad"] = finite(m.heading_rad, child(p, "heading_rad"));
     o["size_m"] = finite(m.size_m, child(p, "size_m"));
+    if (!(m.colour == kDefaultMarkerColour))  // maps without colours keep their bytes
+      o["colour"] = formatHexColour(m.colour);
     appendExtra(o, m.extra);
     markers.push_back(std::move(o));
   }
@@ -146,11 +161,14 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
   }
   graph["nodes"] = std::move(nodes);
   OrderedJson edges = OrderedJson::array();
-  for (const TopoEdge& e : map.graph.edges) {
+  for (std::size_t i = 0; i < map.graph.edges.size(); ++i) {
+    const TopoEdge& e = map.graph.edges[i];
     OrderedJson o = OrderedJson::object();
     o["from"] = e.from;
     o["to"] = e.to;
     o["bidirectional"] = e.bidirectional;
+    if (e.cost_m)
+      o["cost_m"] = finite(*e.cost_m, child(child("/graph/edges", i), "cost_m"));
     appendExtra(o, e.extra);
     edges.push_back(std::move(o));
   }
@@ -186,20 +204,28 @@ OrderedJson toJson(const WorldMap& map, const std::string& raster_source) {
 
 std::string serializeMap(const WorldMap& map) {
   return map_file_internal::layoutJson(
-      toJson(map, map.raster ? map.raster->source : std::string()));
+      toJson(map, map.raster ? map.raster->source : std::string(),
+             map.floor_plan ? map.floor_plan->source : std::string()));
 }
 
 std::optional<std::string> saveMapFile(const WorldMap& map, const fs::path& path) {
-  std::string source = map.raster ? map.raster->source : std::string();
-  if (map.raster && !map.raster->resolved_path.empty()) {
-    std::error_code ec;
-    const fs::path folder = fs::absolute(path, ec).parent_path();
-    const fs::path relative = fs::path(map.raster->resolved_path).lexically_relative(folder);
-    source = ec || relative.empty() ? map.raster->resolved_path : relative.generic_string();
-  }
+  // Referenced files (raster YAML, floor-plan image) are written relative to the map's folder.
+  std::error_code ec;
+  const fs::path folder = fs::absolute(path, ec).parent_path();
+  auto reference = [&](const std::string& source, const std::string& resolved) {
+    if (resolved.empty())
+      return source;
+    const fs::path relative = fs::path(resolved).lexically_relative(folder);
+    return ec || relative.empty() ? resolved : relative.generic_string();
+  };
+  const std::string source =
+      map.raster ? reference(map.raster->source, map.raster->resolved_path) : std::string();
+  const std::string plan_source =
+      map.floor_plan ? reference(map.floor_plan->source, map.floor_plan->resolved_path)
+                     : std::string();
   std::string text;
   try {
-    text = map_file_internal::layoutJson(toJson(map, source));
+    text = map_file_internal::layoutJson(toJson(map, source, plan_source));
   } catch (const std::invalid_argument& e) {
     return "cannot save " + path.string() + ": " + e.what();
   }

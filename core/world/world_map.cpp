@@ -33,6 +33,50 @@ bool pointInPolygon(const Vec2& p, const std::vector<Vec2>& polygon) {
 
 }  // namespace
 
+std::optional<ColourRgb> parseHexColour(std::string_view text) {
+  if (text.size() != 7 || text[0] != '#')
+    return std::nullopt;
+  int v[6];
+  for (std::size_t i = 0; i < 6; ++i) {
+    const char c = text[i + 1];
+    if (c >= '0' && c <= '9')
+      v[i] = c - '0';
+    else if (c >= 'a' && c <= 'f')
+      v[i] = c - 'a' + 10;
+    else if (c >= 'A' && c <= 'F')
+      v[i] = c - 'A' + 10;
+    else
+      return std::nullopt;
+  }
+  return ColourRgb{v[0] * 16 + v[1], v[2] * 16 + v[3], v[4] * 16 + v[5]};
+}
+
+std::string formatHexColour(const ColourRgb& colour) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out = "#";
+  for (int c : {colour.r, colour.g, colour.b}) {
+    c = std::clamp(c, 0, 255);
+    out += kDigits[c / 16];
+    out += kDigits[c % 16];
+  }
+  return out;
+}
+
+const TopoNode* TopoGraph::node(const std::string& id) const {
+  for (const TopoNode& n : nodes)
+    if (n.id == id)
+      return &n;
+  return nullptr;
+}
+
+std::optional<double> TopoGraph::edgeCost(const TopoEdge& edge) const {
+  const TopoNode* a = node(edge.from);
+  const TopoNode* b = node(edge.to);
+  if (a == nullptr || b == nullptr)
+    return std::nullopt;
+  return edge.cost_m ? *edge.cost_m : (b->position - a->position).norm();
+}
+
 std::vector<WorldMap::LabelledSegment> WorldMap::labelledSegments() const {
   std::vector<LabelledSegment> out;
   for (const Wall& wall : walls) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/geometry/types.hpp"
@@ -37,12 +38,30 @@ struct PointFeature {
   nlohmann::json extra = nlohmann::json::object();
 };
 
-// A ceiling marker (002_…: 20 cm fluorescent-red square), pose on the ceiling plane.
+// An sRGB colour, 8 bits a channel ("#rrggbb" in map files).
+struct ColourRgb {
+  int r = 0;
+  int g = 0;
+  int b = 0;
+  friend bool operator==(const ColourRgb&, const ColourRgb&) = default;
+};
+
+// "#rrggbb" (either case) -> colour; nothing for any other text.
+std::optional<ColourRgb> parseHexColour(std::string_view text);
+std::string formatHexColour(const ColourRgb& colour);  // "#rrggbb", lower case
+
+// The fluorescent red of 002_…'s markers (the camera's kMarkerRed albedo, times 255).
+inline constexpr ColourRgb kDefaultMarkerColour{255, 41, 61};
+
+// A ceiling marker (002_…: 20 cm fluorescent-red square), pose on the ceiling plane. The colour
+// is what the simulated camera paints; the detector looks for the default red, so a marker of
+// another colour is a painted square the robot does not recognise (a distractor).
 struct CeilingMarker {
   std::string id;
   Vec2 position = Vec2::Zero();
   double heading_rad = 0.0;
   double size_m = 0.2;
+  ColourRgb colour = kDefaultMarkerColour;
   nlohmann::json extra = nlohmann::json::object();
 };
 
@@ -61,10 +80,14 @@ struct TopoNode {
   nlohmann::json extra = nlohmann::json::object();
 };
 
+// An edge along a corridor (a light row). Its cost is the corridor length: `cost_m` when the
+// map gives it (a corridor that bends between its nodes), otherwise the straight distance
+// between the nodes (A002 "edge cost not specified").
 struct TopoEdge {
   std::string from;
   std::string to;
   bool bidirectional = true;
+  std::optional<double> cost_m;  // > 0 when given
   nlohmann::json extra = nlohmann::json::object();
 };
 
@@ -72,6 +95,12 @@ struct TopoGraph {
   std::vector<TopoNode> nodes;
   std::vector<TopoEdge> edges;
   nlohmann::json extra = nlohmann::json::object();
+
+  // The node with this id, or nullptr.
+  const TopoNode* node(const std::string& id) const;
+  // The edge's cost: cost_m when given, else the distance between its nodes; nothing when a
+  // node is missing.
+  std::optional<double> edgeCost(const TopoEdge& edge) const;
 };
 
 // An obstacle that moves on a scripted path (paper 002's dynamic obstacles: people, carts). The
@@ -100,6 +129,24 @@ struct RasterLayer {
   std::string resolved_path{};
 };
 
+// A background floor-plan image under the map (a scanned or exported drawing to trace walls on).
+// Core never decodes the image: it holds the reference and the calibration; the GUI loads and
+// draws it. Pixel (u, v) (u right, v down from the top-left corner) lies at
+//   world = origin + R(rotation_rad) * metres_per_pixel * (u, -v).
+struct FloorPlan {
+  std::string source;  // as written in the file (relative to the map file's folder)
+  double metres_per_pixel = 0.02;
+  Vec2 origin = Vec2::Zero();  // world position of the image's top-left corner
+  double rotation_rad = 0.0;
+  double opacity = 0.5;  // 0..1, how strongly it shows under the map
+  nlohmann::json extra = nlohmann::json::object();
+  // Absolute path the image was found at (not written). When set, saveMapFile writes `source`
+  // relative to the new map file's folder.
+  std::string resolved_path{};
+
+  friend bool operator==(const FloorPlan&, const FloorPlan&) = default;
+};
+
 struct WorldMap {
   static constexpr int kFormatVersion = 1;
 
@@ -113,6 +160,7 @@ struct WorldMap {
   std::vector<MovingObstacle> moving_obstacles;  // simulated only; not in segments()
   Pose2 start;
   std::optional<RasterLayer> raster;
+  std::optional<FloorPlan> floor_plan;
   double ceiling_height_m = 2.5;
   nlohmann::json extra = nlohmann::json::object();        // unknown top-level keys
   nlohmann::json start_extra = nlohmann::json::object();  // unknown keys of "start"

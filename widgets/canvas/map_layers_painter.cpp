@@ -93,6 +93,7 @@ void MapLayersPainter::setMap(const WorldMap& map) {
   }
 
   marker_polygons_.clear();
+  marker_colours_.clear();
   for (const CeilingMarker& marker : map_.markers) {
     if (!finite(marker.position) || !std::isfinite(marker.heading_rad))
       continue;
@@ -106,9 +107,16 @@ void MapLayersPainter::setMap(const WorldMap& map) {
       square << QPointF(w.x(), w.y());
     }
     marker_polygons_.push_back(square);
+    marker_colours_.emplace_back(marker.colour.r, marker.colour.g, marker.colour.b);
   }
 
   raster_image_ = map_.raster ? rasterToImage(map_.raster->raster) : QImage();
+  // The floor plan's pixels do not change with its calibration: decode only a new file.
+  const std::string plan_path = map_.floor_plan ? map_.floor_plan->resolved_path : std::string();
+  if (plan_path != floor_plan_path_) {
+    floor_plan_path_ = plan_path;
+    floor_plan_image_ = plan_path.empty() ? QImage() : QImage(QString::fromStdString(plan_path));
+  }
 }
 
 void MapLayersPainter::paintUnder(QPainter& p, const QTransform& world, const QRectF& world_rect,
@@ -125,6 +133,20 @@ void MapLayersPainter::paintUnder(QPainter& p, const QTransform& world, const QR
     p.fillRect(floor.adjusted(-12, -12, 12, 12), kFloorColour);
   } else {
     p.fillRect(all, kFloorColour);
+  }
+
+  if (layers.raster && !floor_plan_image_.isNull() && map_.floor_plan) {
+    // Pixel (u, v) -> origin + R(rotation) * s * (u, -v) (core/editing/floor_plan.hpp).
+    const FloorPlan& f = *map_.floor_plan;
+    const double c = std::cos(f.rotation_rad) * f.metres_per_pixel;
+    const double s = std::sin(f.rotation_rad) * f.metres_per_pixel;
+    const QTransform image_to_world(c, s, s, -c, f.origin.x(), f.origin.y());
+    p.save();
+    p.setTransform(image_to_world * world);
+    p.setOpacity(f.opacity);
+    p.setRenderHint(QPainter::SmoothPixmapTransform, true);
+    p.drawImage(QPointF(0, 0), floor_plan_image_);
+    p.restore();
   }
 
   paintMetricGrid(p, world, world_rect, scale, area);
@@ -161,10 +183,15 @@ void MapLayersPainter::paintOver(QPainter& p, const QTransform& world, const QRe
     p.setPen(cosmeticPen(kLightOutline, 1.0));
     p.setBrush(kLightFill);
     p.drawPath(light_path_);
-    p.setPen(cosmeticPen(kMarkerOutline, 1.0));
-    p.setBrush(kMarkerFill);
-    for (const QPolygonF& square : marker_polygons_)
-      p.drawPolygon(square);
+    for (std::size_t i = 0; i < marker_polygons_.size(); ++i) {
+      // The default red keeps the palette's translucent look; other colours keep their hue.
+      QColor fill = marker_colours_[i], outline = marker_colours_[i];
+      fill.setAlpha(kMarkerFill.alpha());
+      outline.setAlpha(kMarkerOutline.alpha());
+      p.setPen(cosmeticPen(outline, 1.0));
+      p.setBrush(fill);
+      p.drawPolygon(marker_polygons_[i]);
+    }
     p.restore();
   }
 

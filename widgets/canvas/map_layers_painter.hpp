@@ -3,6 +3,7 @@
 // prepared once per map: floor, raster and origin axes under the live grid; ceiling, obstacles,
 // walls, features and the topological graph over it.
 
+#include <QColor>
 #include <QImage>
 #include <QLineF>
 #include <QPainterPath>
@@ -10,6 +11,7 @@
 #include <QRectF>
 #include <QSize>
 #include <QTransform>
+#include <string>
 #include <vector>
 
 #include "core/world/world_map.hpp"
@@ -35,7 +37,8 @@ class MapLayersPainter {
 
   // Both paint onto an area of `area` pixels that shows `world_rect` (world metres, y0 < y1)
   // through `world` (world metres -> area pixels, `scale` pixels per metre).
-  // Floor (grey outside the map bounds), metric grid, raster, world origin axes; fills the area.
+  // Floor (grey outside the map bounds), floor-plan image, metric grid, raster, world origin
+  // axes; fills the area.
   void paintUnder(QPainter& p, const QTransform& world, const QRectF& world_rect, double scale,
                   const QSize& area, const StaticLayerVisibility& layers) const;
   // Ceiling, obstacles, walls, features, graph on a transparent area.
@@ -48,7 +51,10 @@ class MapLayersPainter {
   std::vector<QPolygonF> obstacle_polygons_;
   QPainterPath light_path_;
   std::vector<QPolygonF> marker_polygons_;
-  QImage raster_image_;  // one pixel per raster cell, top row = largest y
+  std::vector<QColor> marker_colours_;  // each marker's own colour (the map's)
+  QImage raster_image_;                 // one pixel per raster cell, top row = largest y
+  QImage floor_plan_image_;             // the floor-plan image, decoded once per file
+  std::string floor_plan_path_;         // the file floor_plan_image_ was read from
 };
 
 }  // namespace irgs::widgets

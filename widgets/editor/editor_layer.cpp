@@ -9,6 +9,7 @@
 #include <QWheelEvent>
 #include <cmath>
 
+#include "core/editing/floor_plan.hpp"
 #include "core/editing/hit_test.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/editor/editor_model.hpp"
@@ -27,14 +28,12 @@ const QColor kMeasure(120, 40, 170);   // purple measure line
 const QColor kIssueError(200, 30, 30);
 const QColor kIssueWarning(230, 150, 0);
 
-std::vector<Vec2> pointsOf(const editing::Element& e) {
-  if (const auto* w = std::get_if<Wall>(&e))
-    return w->points;
-  if (const auto* o = std::get_if<Obstacle>(&e))
-    return o->polygon;
-  if (const auto* f = std::get_if<PointFeature>(&e))
-    return {f->position};
-  return {std::get<Pose2>(e).position()};
+// The outline drawn for a selected marker or light: its square / tube rectangle.
+std::vector<Vec2> rectangle(const Vec2& centre, double heading, double length, double width) {
+  const Vec2 u(std::cos(heading), std::sin(heading));
+  const Vec2 v(-u.y(), u.x());
+  const Vec2 a = 0.5 * length * u, b = 0.5 * width * v;
+  return {centre - a - b, centre + a - b, centre + a + b, centre - a + b};
 }
 
 bool isClosed(const editing::Element& e) {
@@ -68,6 +67,8 @@ void EditorLayer::setTool(EditorTool tool) {
   if (tool == tool_)
     return;
   cancelDraft();
+  edge_from_.clear();
+  calibration_a_.reset();
   drag_ = Drag::kNone;
   tool_ = tool;  // a measurement stays on the map until Escape or the next one
   setCursor(tool == EditorTool::kSelect ? Qt::ArrowCursor : Qt::CrossCursor);
@@ -200,9 +201,99 @@ void EditorLayer::mousePressEvent(QMouseEvent* event) {
       drag_ = Drag::kMeasure;
       break;
     }
+    case EditorTool::kCeilingMarker:
+      // Like the start pose: press at the centre, drag towards the heading.
+      press_world_ = no_snap ? world : snapped(world, std::nullopt).point;
+      drag_world_ = press_world_;
+      drag_ = Drag::kStartHeading;
+      break;
+    case EditorTool::kCeilingLight:
+      press_world_ = no_snap ? world : snapped(world, std::nullopt).point;
+      drag_world_ = press_world_;
+      drag_ = Drag::kLightTube;
+      break;
+    case EditorTool::kGraphNode:
+      placeNode(world, !no_snap);
+      break;
+    case EditorTool::kGraphEdge:
+      clickEdgeNode(world);
+      break;
+    case EditorTool::kCalibrate: {
+      // Image points are clicked where the drawing shows them: no snapping.
+      const std::optional<FloorPlan>& plan = model_.map().floor_plan;
+      if (!plan) {
+        emit message(tr("Open a floor plan first (Floor Plan…)"));
+        break;
+      }
+      const Vec2 pixel = editing::worldToFloorPlan(*plan, world);
+      if (!calibration_a_) {
+        calibration_a_ = pixel;
+        emit calibrationStarted(world.x(), world.y());
+        emit message(tr("Calibration: now click the second point of the floor plan"));
+      } else {
+        const Vec2 a = *calibration_a_;
+        calibration_a_.reset();
+        emit calibrationRequested(QPointF(a.x(), a.y()), QPointF(pixel.x(), pixel.y()));
+      }
+      break;
+    }
   }
   event->accept();
   update();
+}
+
+std::optional<std::size_t> EditorLayer::nodeNear(const Vec2& world) const {
+  std::optional<std::size_t> best;
+  double best_d = 2.0 * pixelsToMetres(kPickRadius_px);
+  const auto& nodes = model_.map().graph.nodes;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double d = (nodes[i].position - world).norm();
+    if (d <= best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+void EditorLayer::placeNode(const Vec2& world, bool snap) {
+  TopoNode node;
+  node.position = snap ? snapped(world, std::nullopt).point : world;
+  // On a ceiling marker the node sits at the marker's centre and is tied to it (002_…: the
+  // nodes of the graph are the markers).
+  const auto& markers = model_.map().markers;
+  for (const CeilingMarker& m : markers) {
+    const Vec2 d = world - m.position;
+    const double c = std::cos(m.heading_rad), s = std::sin(m.heading_rad);
+    const double reach = 0.5 * m.size_m + pixelsToMetres(kPickRadius_px);
+    if (std::abs(c * d.x() + s * d.y()) <= reach && std::abs(-s * d.x() + c * d.y()) <= reach) {
+      node.position = m.position;
+      node.marker_id = m.id;
+      break;
+    }
+  }
+  if (model_.tryApply([&](const WorldMap& m) { return editing::addElement(m, node); }) &&
+      !node.marker_id.empty())
+    emit message(tr("Node tied to marker '%1'").arg(QString::fromStdString(node.marker_id)));
+}
+
+void EditorLayer::clickEdgeNode(const Vec2& world) {
+  const std::optional<std::size_t> hit = nodeNear(world);
+  if (!hit) {
+    emit message(tr("Click a graph node to start or end the edge"));
+    return;
+  }
+  const std::string id = model_.map().graph.nodes[*hit].id;
+  if (edge_from_.empty() || edge_from_ == id || model_.map().graph.node(edge_from_) == nullptr) {
+    edge_from_ = id;
+    emit message(tr("Edge from node '%1': click the other node").arg(QString::fromStdString(id)));
+    return;
+  }
+  TopoEdge edge;
+  edge.from = edge_from_;
+  edge.to = id;
+  edge_from_.clear();
+  model_.tryApply([&](const WorldMap& m) { return editing::addElement(m, edge); });
 }
 
 void EditorLayer::pressSelect(const Vec2& world, const QPointF& pos, Qt::KeyboardModifiers mods) {
@@ -222,7 +313,8 @@ void EditorLayer::pressSelect(const Vec2& world, const QPointF& pos, Qt::Keyboar
     drag_ = Drag::kVertex;
     vertex_ref_ = hit->ref;
     vertex_index_ = *hit->vertex;
-    drag_world_ = pointsOf(editing::elementAt(model_.map(), hit->ref))[*hit->vertex];
+    drag_world_ = editing::elementPoints(model_.map(),
+                                         editing::elementAt(model_.map(), hit->ref))[*hit->vertex];
     return;
   }
   if (additive) {
@@ -238,7 +330,8 @@ void EditorLayer::pressSelect(const Vec2& world, const QPointF& pos, Qt::Keyboar
   if (!selected)
     model_.setSelection({hit->ref});
   // Move by the grabbed element's nearest point so that point snaps (to grid or endpoints).
-  const std::vector<Vec2> pts = pointsOf(editing::elementAt(model_.map(), hit->ref));
+  const std::vector<Vec2> pts =
+      editing::elementPoints(model_.map(), editing::elementAt(model_.map(), hit->ref));
   grab_point_ = pts.front();
   for (const Vec2& q : pts)
     if ((q - world).norm() < (grab_point_ - world).norm())
@@ -276,6 +369,9 @@ void EditorLayer::mouseMoveEvent(QMouseEvent* event) {
     case Drag::kRubberBand:
     case Drag::kStartHeading:
       drag_world_ = world;
+      break;
+    case Drag::kLightTube:
+      drag_world_ = no_snap ? world : snapped(world, press_world_).point;
       break;
     case Drag::kMeasure:
       if (measure_)
@@ -324,7 +420,8 @@ void EditorLayer::mouseReleaseEvent(QMouseEvent* event) {
       break;
     }
     case Drag::kStartHeading: {
-      double theta = model_.map().start.theta;
+      const bool marker = tool_ == EditorTool::kCeilingMarker;
+      double theta = marker ? 0.0 : model_.map().start.theta;
       const Vec2 d = world - press_world_;
       if (drag_moved_ && d.norm() > pixelsToMetres(kDragSlop_px)) {
         theta = std::atan2(d.y(), d.x());
@@ -332,8 +429,25 @@ void EditorLayer::mouseReleaseEvent(QMouseEvent* event) {
         if (step > 0.0 && !event->modifiers().testFlag(Qt::ShiftModifier))
           theta = editing::roundToStep(theta, step);
       }
+      if (marker) {
+        CeilingMarker m;
+        m.position = press_world_;
+        m.heading_rad = theta;
+        model_.tryApply([&](const WorldMap& map) { return editing::addElement(map, m); });
+        break;
+      }
       const Pose2 start{press_world_.x(), press_world_.y(), theta};
       model_.tryApply([&](const WorldMap& m) { return editing::setStart(m, start); });
+      break;
+    }
+    case Drag::kLightTube: {
+      if (!drag_moved_ || (drag_world_ - press_world_).norm() < 1e-6) {
+        emit message(tr("Drag from one end of the light tube to the other"));
+        break;
+      }
+      CeilingLight light;
+      light.tube = {press_world_, drag_world_};
+      model_.tryApply([&](const WorldMap& m) { return editing::addElement(m, light); });
       break;
     }
     case Drag::kMeasure:
@@ -375,7 +489,11 @@ void EditorLayer::keyPressEvent(QKeyEvent* event) {
   const bool drawing = !draft_.empty();
   switch (event->key()) {
     case Qt::Key_Escape:
-      if (drawing)
+      if (calibration_a_)
+        calibration_a_.reset();
+      else if (!edge_from_.empty())
+        edge_from_.clear();
+      else if (drawing)
         cancelDraft();
       else if (drag_ != Drag::kNone)
         drag_ = Drag::kNone;
@@ -415,20 +533,41 @@ void EditorLayer::paintElementOutline(QPainter& p, const ElementRef& ref) const 
   if (!editing::isValidRef(model_.map(), ref))
     return;
   const editing::Element e = editing::elementAt(model_.map(), ref);
-  const std::vector<Vec2> pts = pointsOf(e);
+  const std::vector<Vec2> pts = editing::elementPoints(model_.map(), e);
   QPolygonF poly;
   for (const Vec2& q : pts)
     poly << toWidget(q);
   p.setBrush(Qt::NoBrush);
   p.setPen(QPen(kSelection, 3.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+  // Markers and lights: their square / tube, plus the heading tick or the end handles.
+  if (const auto* m = std::get_if<CeilingMarker>(&e)) {
+    QPolygonF square;
+    for (const Vec2& q : rectangle(m->position, m->heading_rad, m->size_m, m->size_m))
+      square << toWidget(q);
+    p.drawPolygon(square);
+    const Vec2 tip =
+        m->position + 0.5 * m->size_m * Vec2(std::cos(m->heading_rad), std::sin(m->heading_rad));
+    p.drawLine(toWidget(m->position), toWidget(tip));
+    return;
+  }
+  if (const auto* l = std::get_if<CeilingLight>(&e)) {
+    const Vec2 d = l->tube.b - l->tube.a;
+    QPolygonF tube;
+    for (const Vec2& q :
+         rectangle((l->tube.a + l->tube.b) / 2.0, std::atan2(d.y(), d.x()), d.norm(), l->width_m))
+      tube << toWidget(q);
+    p.drawPolygon(tube);
+  }
   if (pts.size() == 1) {
     p.drawEllipse(poly.front(), 9.0, 9.0);
     return;
   }
   if (isClosed(e))
     p.drawPolygon(poly);
-  else
+  else if (!std::holds_alternative<CeilingLight>(e))
     p.drawPolyline(poly);
+  if (std::holds_alternative<TopoEdge>(e))
+    return;  // the nodes are the handles of their own
   p.setBrush(Qt::white);
   p.setPen(QPen(kSelection, 1.5));
   for (const QPointF& q : poly)
@@ -472,7 +611,8 @@ void EditorLayer::paintEvent(QPaintEvent*) {
     p.restore();
 
   if (drag_ == Drag::kVertex && drag_moved_) {
-    std::vector<Vec2> pts = pointsOf(editing::elementAt(model_.map(), vertex_ref_));
+    std::vector<Vec2> pts =
+        editing::elementPoints(model_.map(), editing::elementAt(model_.map(), vertex_ref_));
     const std::size_t n = pts.size();
     p.setPen(QPen(kSelection, 2.0, Qt::DashLine));
     const QPointF v = toWidget(drag_world_);
@@ -546,6 +686,42 @@ void EditorLayer::paintEvent(QPaintEvent*) {
     fill.setAlpha(30);
     p.setBrush(fill);
     p.drawRect(QRectF(toWidget(press_world_), toWidget(drag_world_)).normalized());
+  }
+
+  if (drag_ == Drag::kLightTube) {
+    p.setPen(QPen(kDraft, 6.0, Qt::SolidLine, Qt::RoundCap));
+    p.drawLine(toWidget(press_world_), toWidget(drag_world_));
+    const Vec2 d = drag_world_ - press_world_;
+    p.setPen(kDraft.darker(150));
+    p.drawText(toWidget(drag_world_) + QPointF(12, 16),
+               QStringLiteral("%1 m  %2°")
+                   .arg(d.norm(), 0, 'f', 2)
+                   .arg(radToDeg(std::atan2(d.y(), d.x())), 0, 'f', 0));
+  }
+
+  if (tool_ == EditorTool::kGraphEdge && !edge_from_.empty()) {
+    if (const TopoNode* from = model_.map().graph.node(edge_from_)) {
+      p.setPen(QPen(kDraft, 2.5));
+      p.setBrush(Qt::NoBrush);
+      p.drawEllipse(toWidget(from->position), 9.0, 9.0);
+      if (hover_) {
+        p.setPen(QPen(kDraft, 2.0, Qt::DashLine));
+        p.drawLine(toWidget(from->position), toWidget(*hover_));
+      }
+    }
+  }
+
+  if (calibration_a_ && model_.map().floor_plan) {
+    const QPointF a =
+        toWidget(editing::floorPlanToWorld(*model_.map().floor_plan, *calibration_a_));
+    p.setPen(QPen(kMeasure, 2.0));
+    p.drawLine(a - QPointF(8, 0), a + QPointF(8, 0));
+    p.drawLine(a - QPointF(0, 8), a + QPointF(0, 8));
+    p.drawText(a + QPointF(6, -6), QStringLiteral("A"));
+    if (hover_) {
+      p.setPen(QPen(kMeasure, 1.5, Qt::DashLine));
+      p.drawLine(a, toWidget(*hover_));
+    }
   }
 
   if (drag_ == Drag::kStartHeading) {

@@ -7,7 +7,11 @@
 // vertex of the selected wall/obstacle), draw wall (click points; double-click, Enter or a
 // right click finishes; clicking the first point closes the outline), draw polygon obstacle
 // (likewise, at least three points), place start pose (press at the position, drag for the
-// heading), corner/edge feature (click), measure (drag). Points snap per the model's snap
+// heading), corner/edge feature (click), ceiling marker (press at the centre, drag for the
+// heading), ceiling light (drag from one end of the tube to the other), graph node (click; on a
+// marker it lands on the marker's centre, tied to it), graph edge (click one node, then another),
+// floor-plan calibration (click two points of the image: the panel applies the distance and
+// the first point's position), measure (drag). Points snap per the model's snap
 // settings; Shift while drawing disables snapping. Escape cancels, Backspace removes the last
 // drawn point, Delete deletes the selection. The wheel and the middle button pass through to
 // the canvas (zoom and pan).
@@ -15,6 +19,7 @@
 #include <QPointF>
 #include <QWidget>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/editing/map_edit.hpp"
@@ -25,7 +30,20 @@ namespace irgs::widgets {
 class EditorModel;
 class MapCanvas;
 
-enum class EditorTool { kSelect, kWall, kPolygon, kStart, kCorner, kEdge, kMeasure };
+enum class EditorTool {
+  kSelect,
+  kWall,
+  kPolygon,
+  kStart,
+  kCorner,
+  kEdge,
+  kCeilingMarker,
+  kCeilingLight,
+  kGraphNode,
+  kGraphEdge,
+  kCalibrate,
+  kMeasure,
+};
 
 class EditorLayer : public QWidget {
   Q_OBJECT
@@ -43,6 +61,8 @@ class EditorLayer : public QWidget {
   EditorTool tool() const { return tool_; }
   // Points of the outline being drawn (wall/polygon tools).
   const std::vector<irgs::Vec2>& draftPoints() const { return draft_; }
+  // The node an edge being drawn starts from (graph edge tool), or "".
+  const std::string& edgeStart() const { return edge_from_; }
   // The last measurement: from, to (world metres).
   std::optional<std::pair<irgs::Vec2, irgs::Vec2>> measurement() const;
   // Finishes / abandons the outline being drawn.
@@ -59,6 +79,10 @@ class EditorLayer : public QWidget {
   void toolChanged(irgs::widgets::EditorTool tool);
   void measured(double distance_m, double heading_rad);
   void message(const QString& text);  // hints and results for the status bar
+  // Calibrate tool: the first image point was clicked (where it lies now, world metres); then
+  // both points, as floor-plan image pixels.
+  void calibrationStarted(double x_m, double y_m);
+  void calibrationRequested(QPointF pixel_a, QPointF pixel_b);
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
@@ -71,7 +95,7 @@ class EditorLayer : public QWidget {
   void keyPressEvent(QKeyEvent* event) override;
 
  private:
-  enum class Drag { kNone, kMove, kVertex, kRubberBand, kStartHeading, kMeasure };
+  enum class Drag { kNone, kMove, kVertex, kRubberBand, kStartHeading, kMeasure, kLightTube };
 
   irgs::Vec2 toWorld(const QPointF& p) const;
   QPointF toWidget(const irgs::Vec2& p) const;
@@ -81,6 +105,10 @@ class EditorLayer : public QWidget {
   void releaseSelect(const irgs::Vec2& world, Qt::KeyboardModifiers mods);
   void paintElementOutline(QPainter& p, const irgs::editing::ElementRef& ref) const;
   void paintIssues(QPainter& p) const;
+  void placeNode(const irgs::Vec2& world, bool snap);
+  void clickEdgeNode(const irgs::Vec2& world);
+  // The graph node within the pick radius of `world`, or nothing.
+  std::optional<std::size_t> nodeNear(const irgs::Vec2& world) const;
 
   MapCanvas& canvas_;
   EditorModel& model_;
@@ -99,6 +127,8 @@ class EditorLayer : public QWidget {
   irgs::editing::ElementRef vertex_ref_;
   std::size_t vertex_index_ = 0;
   std::optional<std::pair<irgs::Vec2, irgs::Vec2>> measure_;
+  std::string edge_from_;                    // graph edge tool: the first node clicked
+  std::optional<irgs::Vec2> calibration_a_;  // calibrate tool: the first image pixel
 };
 
 }  // namespace irgs::widgets

@@ -6,18 +6,22 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
+#include <QFormLayout>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
+#include <QImageReader>
 #include <QLabel>
 #include <QListWidget>
 #include <QMessageBox>
+#include <QSignalBlocker>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <filesystem>
 
+#include "core/editing/floor_plan.hpp"
 #include "core/editing/vectorise.hpp"
 #include "core/world/ros_map.hpp"
 #include "widgets/editor/editor_model.hpp"
@@ -43,6 +47,17 @@ constexpr ToolInfo kTools[] = {
     {EditorTool::kStart, "Start pose", "Press at the start position, drag for the heading"},
     {EditorTool::kCorner, "Corner", "Place a corner (concave) feature"},
     {EditorTool::kEdge, "Edge", "Place an edge (convex) feature"},
+    {EditorTool::kCeilingMarker, "Marker",
+     "Place a ceiling marker: press at its centre, drag for its heading"},
+    {EditorTool::kCeilingLight, "Light",
+     "Draw a ceiling light: drag from one end of the tube to "
+     "the other"},
+    {EditorTool::kGraphNode, "Node",
+     "Place a graph node; on a ceiling marker it is tied to the marker, at its centre"},
+    {EditorTool::kGraphEdge, "Graph edge", "Join two graph nodes: click one, then the other"},
+    {EditorTool::kCalibrate, "Calibrate",
+     "Calibrate the floor plan: click two points of the image whose true distance (and the "
+     "first one's position) you enter below"},
     {EditorTool::kMeasure, "Measure", "Drag to measure a distance and heading"},
 };
 
@@ -141,6 +156,70 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   }
   layout->addLayout(raster_row);
   connect(&model_, &EditorModel::mapChanged, this, &EditorPanel::updateActions);
+
+  // Floor plan: open beside the raster import; remove, opacity and the calibration values the
+  // Calibrate tool applies show only while there is a plan (the tab stays as short as before).
+  open_plan_ = new QAction(tr("Floor Plan…"), this);
+  open_plan_->setToolTip(tr("Put an image (a drawing of the floor) under the map"));
+  remove_plan_ = new QAction(tr("Remove Plan"), this);
+  connect(open_plan_, &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Floor Plan"), {}, tr("Images (*.png *.jpg *.jpeg *.bmp *.pgm *.tif *.tiff)"));
+    if (path.isEmpty())
+      return;
+    const QString problem = openFloorPlan(path);
+    if (!problem.isEmpty())
+      QMessageBox::warning(this, tr("Floor Plan"), problem);
+  });
+  connect(remove_plan_, &QAction::triggered, &model_, [this] {
+    model_.tryApply([](const WorldMap& map) { return editing::setFloorPlan(map, std::nullopt); });
+  });
+  raster_row->insertWidget(0, button(open_plan_, this));
+  plan_widget_ = new QWidget(this);
+  auto* plan_grid = new QGridLayout(plan_widget_);
+  plan_grid->setContentsMargins(0, 0, 0, 0);
+  auto spin = [this](double lo, double hi, double value) {
+    auto* s = new QDoubleSpinBox(plan_widget_);
+    s->setRange(lo, hi);
+    s->setDecimals(3);
+    s->setSuffix(QStringLiteral(" m"));
+    s->setValue(value);
+    return s;
+  };
+  calib_distance_ = spin(0.001, 10000.0, 1.0);
+  calib_x_ = spin(-100000.0, 100000.0, 0.0);
+  calib_y_ = spin(-100000.0, 100000.0, 0.0);
+  calib_distance_->setToolTip(tr("Calibrate tool: the true distance between the two points"));
+  calib_x_->setToolTip(tr("Calibrate tool: where the first point truly is (x)"));
+  calib_y_->setToolTip(tr("Calibrate tool: where the first point truly is (y)"));
+  plan_opacity_ = new QDoubleSpinBox(plan_widget_);
+  plan_opacity_->setRange(0.0, 1.0);
+  plan_opacity_->setSingleStep(0.1);
+  plan_opacity_->setDecimals(2);
+  plan_opacity_->setKeyboardTracking(false);
+  plan_opacity_->setPrefix(tr("opacity "));
+  plan_grid->addWidget(button(remove_plan_, plan_widget_), 0, 0);
+  plan_grid->addWidget(plan_opacity_, 0, 1);
+  plan_grid->addWidget(new QLabel(tr("A–B"), plan_widget_), 0, 2);
+  plan_grid->addWidget(calib_distance_, 0, 3);
+  plan_grid->addWidget(new QLabel(tr("A at x, y"), plan_widget_), 1, 0);
+  plan_grid->addWidget(calib_x_, 1, 1);
+  plan_grid->addWidget(calib_y_, 1, 2, 1, 2);
+  layout->addWidget(plan_widget_);
+  connect(plan_opacity_, &QDoubleSpinBox::valueChanged, &model_, [this](double opacity) {
+    if (!model_.map().floor_plan || model_.map().floor_plan->opacity == opacity)
+      return;
+    FloorPlan plan = *model_.map().floor_plan;
+    plan.opacity = opacity;
+    model_.tryApply([&](const WorldMap& map) {
+      return editing::setFloorPlan(map, plan, "Floor plan opacity");
+    });
+  });
+  connect(&layer_, &EditorLayer::calibrationStarted, this, [this](double x, double y) {
+    calib_x_->setValue(x);
+    calib_y_->setValue(y);
+  });
+  connect(&layer_, &EditorLayer::calibrationRequested, this, &EditorPanel::calibrate);
 
   // Snapping.
   auto* snap_box = new QGroupBox(tr("Snap"), this);
@@ -261,6 +340,58 @@ QString EditorPanel::importRaster(const QString& yaml_path) {
   return {};
 }
 
+QString EditorPanel::openFloorPlan(const QString& image_path) {
+  QImageReader reader(image_path);
+  const QSize size = reader.size();
+  if (!reader.canRead() || !size.isValid())
+    return tr("%1 is not an image IRGS can read").arg(image_path);
+  const std::filesystem::path path = image_path.toStdString();
+  FloorPlan plan;
+  plan.source = path.filename().string();
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  plan.resolved_path = ec ? path.string() : absolute.lexically_normal().string();
+  plan.metres_per_pixel = 0.02;
+  // The image's top-left corner at the map's, until it is calibrated.
+  const Box2 box = model_.map().bounds();
+  plan.origin = box.empty() ? Vec2(0.0, size.height() * plan.metres_per_pixel)
+                            : Vec2(box.min.x(), box.max.y());
+  QString problem;
+  const QMetaObject::Connection listen = connect(&model_, &EditorModel::rejected, this,
+                                                 [&problem](const QString& why) { problem = why; });
+  const bool applied = model_.tryApply(
+      [&plan](const WorldMap& map) { return editing::setFloorPlan(map, plan, "Open floor plan"); });
+  disconnect(listen);
+  if (!applied)
+    return problem.isEmpty() ? tr("the floor plan was not opened") : problem;
+  layer_.setTool(EditorTool::kCalibrate);
+  return {};
+}
+
+void EditorPanel::calibrate(QPointF pixel_a, QPointF pixel_b) {
+  if (!model_.map().floor_plan)
+    return;
+  const FloorPlan& plan = *model_.map().floor_plan;
+  const Vec2 a(pixel_a.x(), pixel_a.y()), b(pixel_b.x(), pixel_b.y());
+  // B keeps its direction from A (the rotation stays); A goes where the fields say.
+  const Vec2 now = editing::floorPlanToWorld(plan, b) - editing::floorPlanToWorld(plan, a);
+  if (now.norm() <= 0.0) {
+    emit layer_.message(tr("Calibration: click two different points"));
+    return;
+  }
+  const Vec2 world_a(calib_x_->value(), calib_y_->value());
+  const Vec2 world_b = world_a + calib_distance_->value() * now.normalized();
+  const std::optional<FloorPlan> calibrated =
+      editing::calibrateFloorPlan(plan, a, b, world_a, world_b);
+  if (!calibrated)
+    return;
+  model_.tryApply([&](const WorldMap& map) {
+    return editing::setFloorPlan(map, calibrated, "Calibrate floor plan");
+  });
+  emit layer_.message(
+      tr("Floor plan: %1 m per pixel").arg(calibrated->metres_per_pixel, 0, 'g', 4));
+}
+
 void EditorPanel::updateActions() {
   const bool any = !model_.selection().empty();
   copy_->setEnabled(any);
@@ -268,6 +399,15 @@ void EditorPanel::updateActions() {
   paste_->setEnabled(model_.canPaste());
   if (vectorise_ != nullptr)
     vectorise_->setEnabled(model_.map().raster && !model_.map().raster->raster.empty());
+  if (plan_widget_ != nullptr) {
+    const bool plan = model_.map().floor_plan.has_value();
+    remove_plan_->setEnabled(plan);
+    plan_widget_->setVisible(plan);
+    if (plan && plan_opacity_->value() != model_.map().floor_plan->opacity) {
+      const QSignalBlocker block(plan_opacity_);
+      plan_opacity_->setValue(model_.map().floor_plan->opacity);
+    }
+  }
 }
 
 }  // namespace irgs::widgets

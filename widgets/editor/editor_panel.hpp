@@ -41,6 +41,17 @@ class EditorPanel : public QWidget {
   // Imports the ROS map at `yaml_path` as the map's raster layer (replacing any), one undoable
   // step. Returns the problem ("" on success); the action shows it in a message box.
   QString importRaster(const QString& yaml_path);
+  // Puts the image at `image_path` under the map as its floor plan (2 cm per pixel, its top-left
+  // corner at the map's), one undoable step. Returns the problem ("" on success).
+  QString openFloorPlan(const QString& image_path);
+  QAction* floorPlanAction() const { return open_plan_; }
+  QAction* removeFloorPlanAction() const { return remove_plan_; }
+  // Calibration (the Calibrate tool's two clicks): the true distance between the points, m, and
+  // where the first point truly is (filled with where it is now when it is clicked).
+  QDoubleSpinBox& calibrationDistance() const { return *calib_distance_; }
+  QDoubleSpinBox& calibrationX() const { return *calib_x_; }
+  QDoubleSpinBox& calibrationY() const { return *calib_y_; }
+  QDoubleSpinBox& floorPlanOpacity() const { return *plan_opacity_; }
   PropertyPanel& properties() const { return *properties_; }
   QListWidget& issueList() const { return *issues_; }
   QCheckBox& gridCheck() const { return *grid_; }
@@ -59,6 +70,7 @@ class EditorPanel : public QWidget {
   void updateSnap();
   void refreshIssues();
   void updateActions();
+  void calibrate(QPointF pixel_a, QPointF pixel_b);
 
   EditorModel& model_;
   EditorLayer& layer_;
@@ -68,6 +80,13 @@ class EditorPanel : public QWidget {
   QAction* redo_ = nullptr;
   QAction* vectorise_ = nullptr;
   QAction* import_raster_ = nullptr;
+  QAction* open_plan_ = nullptr;
+  QAction* remove_plan_ = nullptr;
+  QDoubleSpinBox* calib_distance_ = nullptr;
+  QDoubleSpinBox* calib_x_ = nullptr;
+  QDoubleSpinBox* calib_y_ = nullptr;
+  QDoubleSpinBox* plan_opacity_ = nullptr;
+  QWidget* plan_widget_ = nullptr;  // remove, opacity, calibration: shown with a plan
   QAction* copy_ = nullptr;
   QAction* paste_ = nullptr;
   QAction* delete_ = nullptr;

@@ -11,7 +11,9 @@
 #include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 #include <variant>
 
@@ -85,6 +87,44 @@ PropertyPanel::PropertyPanel(EditorModel& model, QWidget* parent) : QWidget(pare
   heading_->setKeyboardTracking(false);
   heading_->setObjectName(QStringLiteral("propertyHeading"));
   form_->addRow(tr("Heading"), heading_);
+  size_ = coordinateSpin(single_);
+  size_->setRange(0.001, 1000.0);
+  size_->setObjectName(QStringLiteral("propertySize"));
+  form_->addRow(tr("Size"), size_);
+  width_ = coordinateSpin(single_);
+  width_->setRange(0.001, 100.0);
+  width_->setObjectName(QStringLiteral("propertyWidth"));
+  form_->addRow(tr("Width"), width_);
+  colour_ = new QLineEdit(single_);
+  colour_->setObjectName(QStringLiteral("propertyColour"));
+  colour_->setPlaceholderText(QStringLiteral("#rrggbb"));
+  colour_->setToolTip(
+      tr("The marker's colour as #rrggbb; the detector looks for the default red "
+         "(#ff293d), other colours are painted squares it ignores"));
+  form_->addRow(tr("Colour"), colour_);
+  marker_ = new QComboBox(single_);
+  marker_->setObjectName(QStringLiteral("propertyMarker"));
+  marker_->setToolTip(tr("The ceiling marker at this node"));
+  form_->addRow(tr("Marker"), marker_);
+  bidirectional_ = new QCheckBox(tr("Both directions"), single_);
+  form_->addRow(QString(), bidirectional_);
+  auto* cost_row = new QHBoxLayout;
+  cost_given_ = new QCheckBox(tr("Given"), single_);
+  cost_given_->setToolTip(
+      tr("Give the corridor length (a corridor that bends); otherwise it is "
+         "the straight distance between the nodes"));
+  cost_ = coordinateSpin(single_);
+  cost_->setRange(0.001, kCoordinateLimit_m);
+  cost_->setObjectName(QStringLiteral("propertyCost"));
+  cost_row->addWidget(cost_given_);
+  cost_row->addWidget(cost_, 1);
+  form_->addRow(tr("Cost"), cost_row);
+  cost_row_ = cost_row;
+  cost_label_ = new QLabel(single_);
+  cost_label_->setObjectName(QStringLiteral("propertyCostLabel"));
+  // No word wrap: a height-for-width label in a form with hidden rows overruns a buffer in
+  // QFormLayout (Qt 6.4, seen under valgrind); the texts are short instead.
+  form_->addRow(QString(), cost_label_);
   vertices_ = new QTableWidget(0, 2, single_);
   vertices_->setObjectName(QStringLiteral("propertyVertices"));
   vertices_->setHorizontalHeaderLabels({tr("x (m)"), tr("y (m)")});
@@ -133,6 +173,12 @@ PropertyPanel::PropertyPanel(EditorModel& model, QWidget* parent) : QWidget(pare
   connect(vertices_, &QTableWidget::itemChanged, this, &PropertyPanel::commitVertex);
   connect(closed_, &QCheckBox::toggled, this, &PropertyPanel::commitClosed);
   connect(kind_, &QComboBox::currentIndexChanged, this, &PropertyPanel::commitKind);
+  for (QDoubleSpinBox* spin : {size_, width_, cost_})
+    connect(spin, &QDoubleSpinBox::valueChanged, this, &PropertyPanel::commitCeilingOrGraph);
+  connect(marker_, &QComboBox::currentIndexChanged, this, &PropertyPanel::commitCeilingOrGraph);
+  connect(bidirectional_, &QCheckBox::toggled, this, &PropertyPanel::commitCeilingOrGraph);
+  connect(cost_given_, &QCheckBox::toggled, this, &PropertyPanel::commitCeilingOrGraph);
+  connect(colour_, &QLineEdit::editingFinished, this, &PropertyPanel::commitColour);
   connect(move_button, &QPushButton::clicked, this,
           [this] { applyMove(move_dx_->value(), move_dy_->value()); });
   connect(rotate_button, &QPushButton::clicked, this, [this] { applyRotate(rotate_->value()); });
@@ -156,15 +202,35 @@ void PropertyPanel::refresh() {
     const ElementRef ref = sel.front();
     const Element e = editing::elementAt(model_.map(), ref);
     title_->setText(QString::fromStdString(editing::describe(e)));
-    const bool has_id = ref.kind != ElementKind::kStart;
-    const bool point_like = ref.kind == ElementKind::kFeature || ref.kind == ElementKind::kStart;
+    const ElementKind k = ref.kind;
+    const bool has_id = k != ElementKind::kStart && k != ElementKind::kEdge;
+    const bool point_like = k == ElementKind::kFeature || k == ElementKind::kStart ||
+                            k == ElementKind::kMarker || k == ElementKind::kLight ||
+                            k == ElementKind::kNode;
+    const bool edge = k == ElementKind::kEdge;
     form_->setRowVisible(id_, has_id);
-    form_->setRowVisible(kind_, ref.kind == ElementKind::kFeature);
-    form_->setRowVisible(closed_, ref.kind == ElementKind::kWall);
+    form_->setRowVisible(kind_, k == ElementKind::kFeature);
+    form_->setRowVisible(closed_, k == ElementKind::kWall);
     form_->setRowVisible(x_, point_like);
     form_->setRowVisible(y_, point_like);
-    form_->setRowVisible(heading_, ref.kind == ElementKind::kStart);
-    form_->setRowVisible(vertices_, !point_like);
+    form_->setRowVisible(heading_, k == ElementKind::kStart || k == ElementKind::kMarker ||
+                                       k == ElementKind::kLight);
+    form_->setRowVisible(vertices_, k == ElementKind::kWall || k == ElementKind::kObstacle);
+    form_->setRowVisible(size_, k == ElementKind::kMarker || k == ElementKind::kLight);
+    form_->setRowVisible(width_, k == ElementKind::kLight);
+    form_->setRowVisible(colour_, k == ElementKind::kMarker);
+    form_->setRowVisible(marker_, k == ElementKind::kNode);
+    form_->setRowVisible(bidirectional_, edge);
+    form_->setRowVisible(cost_row_, edge);
+    form_->setRowVisible(cost_label_, edge);
+    form_->labelForField(heading_)->setProperty(
+        "text", k == ElementKind::kLight ? tr("Orientation") : tr("Heading"));
+    form_->labelForField(size_)->setProperty("text",
+                                             k == ElementKind::kLight ? tr("Length") : tr("Size"));
+    form_->labelForField(x_)->setProperty("text",
+                                          k == ElementKind::kLight ? tr("Centre x") : tr("x"));
+    form_->labelForField(y_)->setProperty("text",
+                                          k == ElementKind::kLight ? tr("Centre y") : tr("y"));
     id_->setText(QString::fromStdString(editing::elementId(e)));
     if (const auto* f = std::get_if<PointFeature>(&e)) {
       kind_->setCurrentIndex(f->kind == PointFeatureKind::kCorner ? 0 : 1);
@@ -174,6 +240,38 @@ void PropertyPanel::refresh() {
       x_->setValue(s->x);
       y_->setValue(s->y);
       heading_->setValue(radToDeg(s->theta));
+    } else if (const auto* m = std::get_if<CeilingMarker>(&e)) {
+      x_->setValue(m->position.x());
+      y_->setValue(m->position.y());
+      heading_->setValue(radToDeg(m->heading_rad));
+      size_->setValue(m->size_m);
+      colour_->setText(QString::fromStdString(formatHexColour(m->colour)));
+    } else if (const auto* l = std::get_if<CeilingLight>(&e)) {
+      const Vec2 c = (l->tube.a + l->tube.b) / 2.0, d = l->tube.b - l->tube.a;
+      x_->setValue(c.x());
+      y_->setValue(c.y());
+      heading_->setValue(radToDeg(std::atan2(d.y(), d.x())));
+      size_->setValue(d.norm());
+      width_->setValue(l->width_m);
+    } else if (const auto* n = std::get_if<TopoNode>(&e)) {
+      x_->setValue(n->position.x());
+      y_->setValue(n->position.y());
+      marker_->clear();
+      marker_->addItem(tr("(none)"), QString());
+      for (const CeilingMarker& cm : model_.map().markers)
+        marker_->addItem(QString::fromStdString(cm.id), QString::fromStdString(cm.id));
+      const int at = marker_->findData(QString::fromStdString(n->marker_id));
+      marker_->setCurrentIndex(at < 0 ? 0 : at);
+    } else if (const auto* ed = std::get_if<TopoEdge>(&e)) {
+      bidirectional_->setChecked(ed->bidirectional);
+      cost_given_->setChecked(ed->cost_m.has_value());
+      cost_->setEnabled(ed->cost_m.has_value());
+      const TopoNode* a = model_.map().graph.node(ed->from);
+      const TopoNode* b = model_.map().graph.node(ed->to);
+      const double chord = a && b ? (b->position - a->position).norm() : 0.0;
+      cost_->setValue(ed->cost_m.value_or(std::max(chord, 0.001)));
+      cost_label_->setText(ed->cost_m ? tr("Given; the nodes are %1 m apart").arg(chord, 0, 'f', 3)
+                                      : tr("= %1 m between the nodes").arg(chord, 0, 'f', 3));
     } else {
       if (const auto* w = std::get_if<Wall>(&e))
         closed_->setChecked(w->closed);
@@ -210,7 +308,8 @@ void PropertyPanel::commitId() {
     return;
   std::visit(
       [&](auto& element) {
-        if constexpr (!std::is_same_v<std::decay_t<decltype(element)>, Pose2>)
+        using T = std::decay_t<decltype(element)>;
+        if constexpr (!std::is_same_v<T, Pose2> && !std::is_same_v<T, TopoEdge>)
           element.id = id;
       },
       e);
@@ -231,11 +330,68 @@ void PropertyPanel::commitPoint() {
     f->position = Vec2(x_->value(), y_->value());
   } else if (auto* s = std::get_if<Pose2>(&e)) {
     *s = Pose2{x_->value(), y_->value(), degToRad(heading_->value())};
+  } else if (auto* m = std::get_if<CeilingMarker>(&e)) {
+    m->position = Vec2(x_->value(), y_->value());
+    m->heading_rad = degToRad(heading_->value());
+  } else if (auto* n = std::get_if<TopoNode>(&e)) {
+    n->position = Vec2(x_->value(), y_->value());
+  } else if (std::holds_alternative<CeilingLight>(e)) {
+    commitCeilingOrGraph();  // centre and orientation rebuild the tube
+    return;
   } else {
     return;
   }
   model_.tryApply(
       [&](const WorldMap& m) { return editing::replaceElement(m, ref, e, "Edit position"); });
+}
+
+void PropertyPanel::commitCeilingOrGraph() {
+  if (updating_ || model_.selection().size() != 1)
+    return;
+  const ElementRef ref = model_.selection().front();
+  Element e = editing::elementAt(model_.map(), ref);
+  if (auto* m = std::get_if<CeilingMarker>(&e)) {
+    m->size_m = size_->value();
+  } else if (auto* l = std::get_if<CeilingLight>(&e)) {
+    const Vec2 c(x_->value(), y_->value());
+    const double heading = degToRad(heading_->value());
+    const Vec2 half = 0.5 * size_->value() * Vec2(std::cos(heading), std::sin(heading));
+    l->tube = {c - half, c + half};
+    l->width_m = width_->value();
+  } else if (auto* n = std::get_if<TopoNode>(&e)) {
+    n->marker_id = marker_->currentData().toString().toStdString();
+    // Tying a node to a marker puts it on the marker's centre.
+    for (const CeilingMarker& cm : model_.map().markers)
+      if (!n->marker_id.empty() && cm.id == n->marker_id)
+        n->position = cm.position;
+  } else if (auto* ed = std::get_if<TopoEdge>(&e)) {
+    ed->bidirectional = bidirectional_->isChecked();
+    ed->cost_m = cost_given_->isChecked() ? std::optional<double>(cost_->value()) : std::nullopt;
+  } else {
+    return;
+  }
+  model_.tryApply([&](const WorldMap& m) { return editing::replaceElement(m, ref, e, "Edit"); });
+}
+
+void PropertyPanel::commitColour() {
+  if (updating_ || model_.selection().size() != 1)
+    return;
+  const ElementRef ref = model_.selection().front();
+  Element e = editing::elementAt(model_.map(), ref);
+  auto* m = std::get_if<CeilingMarker>(&e);
+  if (m == nullptr)
+    return;
+  const std::optional<ColourRgb> colour = parseHexColour(colour_->text().trimmed().toStdString());
+  if (!colour) {
+    refresh();
+    showError(tr("“%1” is not a colour #rrggbb").arg(colour_->text()));
+    return;
+  }
+  if (*colour == m->colour)
+    return;
+  m->colour = *colour;
+  model_.tryApply(
+      [&](const WorldMap& map) { return editing::replaceElement(map, ref, e, "Change colour"); });
 }
 
 void PropertyPanel::commitVertex(QTableWidgetItem* item) {
