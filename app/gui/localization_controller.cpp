@@ -145,8 +145,7 @@ LocalizationController::LocalizationController(SessionController& session,
   connect(restart_button, &QPushButton::clicked, this, [this] { restart(); });
 
   // Every sample feeds the estimator; the canvas overlay follows the display rate.
-  connect(&session_, &SessionController::sampleIntegrated, this,
-          &LocalizationController::onSample);
+  connect(&session_, &SessionController::sampleIntegrated, this, &LocalizationController::onSample);
   connect(&session_, &SessionController::robotStateChanged, this,
           &LocalizationController::updateOverlay);
   connect(&session_, &SessionController::robotReplaced, this, [this] { restart(); });
