@@ -178,6 +178,12 @@ bool EditorController::autosaveNow() {
   if (!model_->isModified() || autosaved_generation_ == generation_)
     return false;
   WorldMap map = model_->map();
+  // The layers' files by absolute path: a `source` as written (relative to the map, or only a
+  // file name until the map is saved) would not be found from the recovery file.
+  if (map.raster && !map.raster->resolved_path.empty())
+    map.raster->source = map.raster->resolved_path;
+  if (map.floor_plan && !map.floor_plan->resolved_path.empty())
+    map.floor_plan->source = map.floor_plan->resolved_path;
   map.extra[kRecoveryKey] = {
       {"source", files_.currentFile().toStdString()},
       {"saved_utc", QDateTime::currentDateTimeUtc().toString(Qt::ISODate).toStdString()}};

@@ -825,6 +825,16 @@ Edit replaceContents(const WorldMap& current, const WorldMap& target, std::strin
   replaceKind(ElementKind::kLight, current.lights, target.lights);
   if (!(current.start == target.start))
     edit.changes.push_back({ElementKind::kStart, 0, Element(current.start), Element(target.start)});
+  // The layers under the map too (a recovery restores an imported raster or a calibrated plan).
+  // A raster is compared by the file it came from: its cells are that file's.
+  const auto rasterFile = [](const std::optional<RasterLayer>& r) {
+    return r ? std::optional<std::string>(r->resolved_path.empty() ? r->source : r->resolved_path)
+             : std::nullopt;
+  };
+  if (rasterFile(current.raster) != rasterFile(target.raster))
+    edit.raster = RasterChange{current.raster, target.raster};
+  if (current.floor_plan != target.floor_plan)
+    edit.floor_plan = FloorPlanChange{current.floor_plan, target.floor_plan};
   return edit;
 }
 

@@ -11,6 +11,8 @@
 #include <QComboBox>
 #include <QDir>
 #include <QDoubleSpinBox>
+#include <QFile>
+#include <QFileInfo>
 #include <QImage>
 #include <QLabel>
 #include <QLineEdit>
@@ -360,6 +362,29 @@ TEST_F(EditorCeilingGraphTest, AFloorPlanIsOpenedCalibratedByTwoClicksSavedAndRe
   EXPECT_FALSE(map().floor_plan);
   panel().undoAction()->trigger();
   EXPECT_TRUE(map().floor_plan);
+
+  // Crash recovery brings a plan back, found by its absolute path (a plan opened anew is
+  // referenced by its file name alone until the map is saved).
+  ASSERT_EQ(panel().openFloorPlan(image_path), QString());
+  const FloorPlan reopened = *map().floor_plan;
+  ASSERT_TRUE(editor().autosaveNow());
+  const QString recovery = dir_.filePath(
+      QStringLiteral("recovery/%1").arg(QString::fromLatin1(EditorController::kRecoveryFileName)));
+  const QString kept = dir_.filePath(QStringLiteral("kept-recovery.json"));
+  ASSERT_TRUE(QFile::copy(recovery, kept));
+  while (editor().isModified())  // back to the saved plan, as a restarted app opens the map
+    panel().undoAction()->trigger();
+  EXPECT_EQ(map().floor_plan->metres_per_pixel, calibrated.metres_per_pixel);
+  QFile::remove(recovery);
+  ASSERT_TRUE(QFile::copy(kept, recovery));
+  editor().setRecoveryPolicy(EditorController::RecoveryPolicy::kAccept);
+  ASSERT_TRUE(editor().offerRecovery());
+  ASSERT_TRUE(map().floor_plan);
+  EXPECT_EQ(map().floor_plan->metres_per_pixel, reopened.metres_per_pixel);
+  EXPECT_EQ(map().floor_plan->resolved_path,
+            QFileInfo(image_path).absoluteFilePath().toStdString());
+  panel().undoAction()->trigger();  // the recovery is one undoable step
+  EXPECT_EQ(map().floor_plan->metres_per_pixel, calibrated.metres_per_pixel);
 }
 
 }  // namespace

@@ -180,5 +180,24 @@ TEST(MapEdit, ReplaceContentsTurnsOneMapIntoAnotherAndBack) {
   EXPECT_EQ(serializeMap(map), before);
 }
 
+// A recovery restores the calibrated floor plan too, not only the elements.
+TEST(MapEdit, ReplaceContentsCarriesTheFloorPlan) {
+  WorldMap map = room();
+  WorldMap target = map;
+  FloorPlan plan;
+  plan.source = "plans/plan.png";
+  plan.metres_per_pixel = 0.03;
+  plan.opacity = 0.3;
+  target.floor_plan = plan;
+  const Edit edit = replaceContents(map, target, "Recover");
+  ASSERT_FALSE(edit.empty());
+  applyEdit(map, edit);
+  ASSERT_TRUE(map.floor_plan);
+  EXPECT_EQ(*map.floor_plan, plan);
+  revertEdit(map, edit);
+  EXPECT_FALSE(map.floor_plan);
+  EXPECT_FALSE(replaceContents(target, target, "Recover").floor_plan);  // unchanged: no change
+}
+
 }  // namespace
 }  // namespace irgs::editing
