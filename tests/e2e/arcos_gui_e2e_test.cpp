@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "status_line.hpp"
 
 namespace irgs::test {
 namespace {
@@ -50,28 +51,7 @@ constexpr double kSipRateTolerance_hz = 1.0;
 // timed out at 7 min: the cause is not found yet (see the issue notes).
 constexpr double kMapBuildingBudget_s = 500.0;
 
-using Fields = std::map<std::string, std::string>;
-
 // "status a=1 b=x" -> {a: 1, b: x}; empty when the line is not a status line.
-Fields parseStatus(const std::string& line) {
-  Fields fields;
-  if (line.rfind("status ", 0) != 0)
-    return fields;
-  std::istringstream in(line.substr(7));
-  std::string word;
-  while (in >> word) {
-    const auto eq = word.find('=');
-    if (eq != std::string::npos)
-      fields[word.substr(0, eq)] = word.substr(eq + 1);
-  }
-  return fields;
-}
-
-double number(const Fields& fields, const std::string& key) {
-  const auto it = fields.find(key);
-  return it == fields.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
-}
-
 std::string text(const Fields& fields, const std::string& key) {
   const auto it = fields.find(key);
   return it == fields.end() ? std::string() : it->second;

@@ -22,6 +22,7 @@
 #include <string>
 
 #include "child_process.hpp"
+#include "status_line.hpp"
 
 namespace irgs::test {
 namespace {
@@ -38,28 +39,7 @@ constexpr double kRequiredRate_hz = 20.0;
 // reads as 19.7 Hz. Allow that much, no more.
 constexpr double kRateTolerance_hz = 0.35;
 
-using Fields = std::map<std::string, std::string>;
-
 // "status a=1 b=x" -> {a: 1, b: x}; empty when the line is not a status line.
-Fields parseStatus(const std::string& line) {
-  Fields fields;
-  if (line.rfind("status ", 0) != 0)
-    return fields;
-  std::istringstream in(line.substr(7));
-  std::string word;
-  while (in >> word) {
-    const auto eq = word.find('=');
-    if (eq != std::string::npos)
-      fields[word.substr(0, eq)] = word.substr(eq + 1);
-  }
-  return fields;
-}
-
-double number(const Fields& fields, const std::string& key) {
-  const auto it = fields.find(key);
-  return it == fields.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
-}
-
 struct MotionEvent {
   bool moving = false;
   double mono_s = 0.0;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "status_line.hpp"
 
 namespace irgs::test {
 namespace {
@@ -37,27 +38,6 @@ namespace {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-
-using Fields = std::map<std::string, std::string>;
-
-Fields parseStatus(const std::string& line) {
-  Fields fields;
-  if (line.rfind("status ", 0) != 0)
-    return fields;
-  std::istringstream in(line.substr(7));
-  std::string word;
-  while (in >> word) {
-    const auto eq = word.find('=');
-    if (eq != std::string::npos)
-      fields[word.substr(0, eq)] = word.substr(eq + 1);
-  }
-  return fields;
-}
-
-double number(const Fields& fields, const std::string& key) {
-  const auto it = fields.find(key);
-  return it == fields.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
-}
 
 struct Pose {
   double t = 0.0, x = 0.0, y = 0.0, theta = 0.0;
@@ -125,25 +105,6 @@ class RecordingReplayEndToEnd : public ::testing::Test {
   }
 
   // Reads status lines until `done` holds for one; fails the test at the deadline.
-  static Fields waitStatus(ChildProcess& gui, const std::function<bool(const Fields&)>& done,
-                           double timeout_s, const std::string& what) {
-    const auto deadline = Clock::now() + milliseconds(static_cast<int>(timeout_s * 1000));
-    while (auto line = gui.readLine(deadline)) {
-      Fields fields = parseStatus(*line);
-      if (!fields.empty() && done(fields))
-        return fields;
-    }
-    ADD_FAILURE() << "timed out after " << timeout_s << " s waiting for " << what;
-    return {};
-  }
-  // Reads until the child closes its stdout (it has exited), at most `timeout_s`.
-  static bool waitExit(ChildProcess& child, double timeout_s) {
-    const auto deadline = Clock::now() + milliseconds(static_cast<int>(timeout_s * 1000));
-    while (child.readLine(deadline)) {
-    }
-    return Clock::now() < deadline;
-  }
-
   fs::path dir_;
 };
 

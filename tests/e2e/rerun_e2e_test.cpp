@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "status_line.hpp"
 
 namespace irgs::test {
 namespace {
@@ -33,45 +34,6 @@ namespace {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-using Fields = std::map<std::string, std::string>;
-
-Fields parseStatus(const std::string& line) {
-  Fields fields;
-  if (line.rfind("status ", 0) != 0)
-    return fields;
-  std::istringstream in(line.substr(7));
-  std::string word;
-  while (in >> word) {
-    const auto eq = word.find('=');
-    if (eq != std::string::npos)
-      fields[word.substr(0, eq)] = word.substr(eq + 1);
-  }
-  return fields;
-}
-
-double number(const Fields& fields, const std::string& key) {
-  const auto it = fields.find(key);
-  return it == fields.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
-}
-
-Fields waitStatus(ChildProcess& gui, const std::function<bool(const Fields&)>& done,
-                  double timeout_s, const std::string& what) {
-  const auto deadline = Clock::now() + milliseconds(static_cast<int>(timeout_s * 1000));
-  while (auto line = gui.readLine(deadline)) {
-    Fields fields = parseStatus(*line);
-    if (!fields.empty() && done(fields))
-      return fields;
-  }
-  ADD_FAILURE() << "timed out after " << timeout_s << " s waiting for " << what;
-  return {};
-}
-
-bool waitExit(ChildProcess& child, double timeout_s) {
-  const auto deadline = Clock::now() + milliseconds(static_cast<int>(timeout_s * 1000));
-  while (child.readLine(deadline)) {
-  }
-  return Clock::now() < deadline;
-}
 
 // col,row -> log-odds text (exact: the files print shortest round-trip doubles).
 std::map<std::pair<int, int>, std::string> readGrid(const fs::path& path, std::string& header) {
