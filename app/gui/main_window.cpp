@@ -10,9 +10,12 @@
 #include <QMessageBox>
 #include <QSettings>
 #include <QSplitter>
+#include <QStackedWidget>
 #include <QStatusBar>
+#include <QTabBar>
 #include <QTabWidget>
 #include <QTimer>
+#include <algorithm>
 #include <array>
 
 #include "app/gui/app_settings.hpp"
@@ -112,6 +115,14 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   side_splitter_->insertWidget(1, &link_ui_->healthPanel());
   side_splitter_->setStretchFactor(1, 0);
   side_splitter_->setStretchFactor(2, 1);
+  // Each tab gets the height it needs in the side column (or the one the user dragged it to).
+  connect(control_tabs_, &QTabWidget::currentChanged, this,
+          [this](int index) { fitSideColumnToTab(index, false); });
+  if (auto* stack = control_tabs_->findChild<QStackedWidget*>())
+    stack->installEventFilter(this);
+  connect(side_splitter_, &QSplitter::splitterMoved, this, [this] {
+    user_tab_heights_[control_tabs_->currentIndex()] = side_splitter_->sizes().value(0);
+  });
   plots_ = new PlotsController(session_, *localization_, link_ui_->controller(), *this);
   exports_ = new ExportActions(session_, *canvas_, link_ui_->controller(), *this);
   parameters_ = new ParametersController(session_, *localization_, *planning_,
@@ -360,6 +371,39 @@ void MainWindow::showAbout() {
                session_.robot() != nullptr
                    ? QString::fromStdString(session_.robot()->describe()).toHtmlEscaped()
                    : tr("none")));
+}
+
+void MainWindow::fitSideColumnToTab(int index, bool grow_only) {
+  QList<int> sizes = side_splitter_->sizes();
+  QWidget* page = control_tabs_->widget(index);
+  // Tabs, link-health panel (keeps its height), console.
+  const int total = sizes.size() == 3 ? sizes[0] + sizes[2] : 0;
+  if (page == nullptr || total <= 0)
+    return;
+  int wanted = 0;
+  if (const auto chosen = user_tab_heights_.find(index); chosen != user_tab_heights_.end())
+    wanted = chosen->second;
+  else
+    wanted = control_tabs_->tabBar()->sizeHint().height() + page->sizeHint().height() + 6;
+  constexpr int kConsoleMinimum = 150;  // a few console lines stay visible
+  const int lowest = control_tabs_->minimumSizeHint().height();
+  const int tabs = std::clamp(wanted, lowest, std::max(lowest, total - kConsoleMinimum));
+  if (tabs == sizes[0] || (grow_only && tabs < sizes[0]))
+    return;
+  sizes[0] = tabs;
+  sizes[2] = total - tabs;
+  side_splitter_->setSizes(sizes);
+}
+
+bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
+  // A page that grows (the editor's selection panel filled) gets the room, unless the user has
+  // sized that tab's area by hand.
+  // The pages' geometry changes reach their parent, the tab widget's stack, as layout requests.
+  if (event->type() == QEvent::LayoutRequest &&
+      watched == control_tabs_->currentWidget()->parent() &&
+      !user_tab_heights_.contains(control_tabs_->currentIndex()))
+    fitSideColumnToTab(control_tabs_->currentIndex(), true);
+  return QMainWindow::eventFilter(watched, event);
 }
 
 void MainWindow::restoreSettings(const QSize& default_size) {

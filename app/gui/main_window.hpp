@@ -4,6 +4,8 @@
 // happens in SessionController, MapFileActions and the widgets.
 
 #include <QMainWindow>
+#include <map>
+#include <vector>
 
 class QAction;
 class QActionGroup;
@@ -81,6 +83,7 @@ class MainWindow : public QMainWindow {
 
  protected:
   void closeEvent(QCloseEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
   void buildLayout();
@@ -94,6 +97,9 @@ class MainWindow : public QMainWindow {
   void updateSimulationActions();
   void showShortcuts();
   void showAbout();
+  // Gives the side column's tab area the height the tab needs (or the height the user last
+  // dragged it to), the console the rest; `grow_only` never takes room back.
+  void fitSideColumnToTab(int index, bool grow_only);
 
   SessionController& session_;
   QSettings& settings_;
@@ -103,7 +109,8 @@ class MainWindow : public QMainWindow {
   widgets::KeyboardTeleop* teleop_ = nullptr;
   QSplitter* main_splitter_ = nullptr;
   QSplitter* side_splitter_ = nullptr;
-  QTabWidget* control_tabs_ = nullptr;  // "Drive" (command panel) and "Plan"
+  QTabWidget* control_tabs_ = nullptr;   // "Drive" (command panel) and "Plan"
+  std::map<int, int> user_tab_heights_;  // per tab index, the height the user dragged it to, px
   widgets::PlanningPanel* planning_panel_ = nullptr;
   PlanningController* planning_ = nullptr;
   MapFileActions* map_files_ = nullptr;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <QAction>
+#include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -188,6 +189,25 @@ TEST_F(EditorGuiTest, PolygonObstacleAndValidationMarkersFollowTheEdits) {
   EXPECT_GE(panel().issueList().count(), 1);
   panel().undoAction()->trigger();
   EXPECT_TRUE(model().issues().empty());
+}
+
+TEST_F(EditorGuiTest, TheEditTabDoesNotForceTheWindowTallerThanALaptopScreen) {
+  // A 1366 x 768 screen less the task bar and the title bar leaves about 700 px. The Edit
+  // page at its fullest (a polygon selected: the property panel lists its vertices; the
+  // validation list filled) scrolls instead of setting the window's minimum height.
+  panel().toolAction(EditorTool::kPolygon)->trigger();
+  click(-0.2, -0.2);
+  click(0.2, -0.2);
+  click(0.2, 0.2);
+  click(-0.2, 0.2);
+  click(-0.2, -0.2);
+  ASSERT_EQ(model().map().obstacles.size(), 1u);
+  model().setSelection({{ElementKind::kObstacle, 0}});
+  ASSERT_FALSE(model().issues().empty());
+  QApplication::processEvents();
+  const QSize minimum = window_->minimumSizeHint().expandedTo(window_->minimumSize());
+  EXPECT_LE(minimum.height(), 700);
+  EXPECT_LE(minimum.width(), 1366);
 }
 
 TEST_F(EditorGuiTest, UnsavedEditsBlockOpeningAndClosingUntilDiscarded) {

@@ -5,6 +5,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QEvent>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QGridLayout>
@@ -14,7 +15,10 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QMessageBox>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalBlocker>
+#include <QStyle>
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
@@ -74,7 +78,18 @@ QToolButton* button(QAction* action, QWidget* parent) {
 EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent)
     : QWidget(parent), model_(model), layer_(layer) {
   setObjectName(QStringLiteral("editorPanel"));
-  auto* layout = new QVBoxLayout(this);
+  // The panel is taller than a laptop screen allows the side column: it scrolls, so that it
+  // does not set the main window's minimum height (a tab widget is as tall as its tallest page).
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(0, 0, 0, 0);
+  auto* scroll = new QScrollArea(this);
+  scroll->setObjectName(QStringLiteral("editorScroll"));
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidgetResizable(true);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  outer->addWidget(scroll);
+  content_ = new QWidget(scroll);
+  auto* layout = new QVBoxLayout(content_);
 
   // Tools.
   auto* tools_box = new QGroupBox(tr("Tools"), this);
@@ -278,8 +293,23 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   });
   connect(&model_, &EditorModel::issuesChanged, this, &EditorPanel::refreshIssues);
   connect(&model_, &EditorModel::selectionChanged, this, &EditorPanel::updateActions);
+  scroll->setWidget(content_);
+  content_->installEventFilter(this);  // its size changes make the panel's sizeHint change
+  // No horizontal scrolling: the column is as wide as the content needs, beside the scroll bar.
+  scroll->setMinimumWidth(content_->minimumSizeHint().width() +
+                          scroll->verticalScrollBar()->sizeHint().width());
   refreshIssues();
   updateActions();
+}
+
+bool EditorPanel::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == content_ && event->type() == QEvent::LayoutRequest)
+    updateGeometry();
+  return QWidget::eventFilter(watched, event);
+}
+
+QSize EditorPanel::sizeHint() const {
+  return content_->sizeHint() + QSize(style()->pixelMetric(QStyle::PM_ScrollBarExtent), 0);
 }
 
 Vec2 EditorPanel::pasteOffset() const {
