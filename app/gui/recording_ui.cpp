@@ -126,7 +126,9 @@ RecordingUi::RecordingUi(SessionController& session, LinkController& link, QMain
       target->tap(direction, time, bytes);
   });
   connect(&session_, &SessionController::robotStateChanged, this, &RecordingUi::onRobotState);
+  connect(&session_, &SessionController::sampleIntegrated, this, &RecordingUi::onSampleIntegrated);
   connect(&session_, &SessionController::robotReplaced, this, [this] {
+    simulator_frames_.reset();  // a new robot: its stream starts over with a heartbeat
     trajectory_.clear();
     expect_initial_sample_ = true;
     if (replaying() && !installing_)
@@ -300,6 +302,23 @@ void RecordingUi::onRobotState(const TelemetrySample& sample) {
     recorder_->recordTruth(sample.true_pose->x, sample.true_pose->y, sample.true_pose->theta);
 }
 
+void RecordingUi::onSampleIntegrated(const TelemetrySample& sample) {
+  // A simulator session is recorded as the bytes a robot running the IRGS firmware would have
+  // sent for its samples, so it replays and re-runs through the link path like a robot's.
+  if (!recorder_ || replaying() || session_.simulationControl() == nullptr)
+    return;
+  if (!simulator_frames_) {
+    simulator_frames_.emplace(session_.profile());
+    recorder_->setMeta("telemetry_source", "simulator (IRGS firmware compact streams)");
+  }
+  simulator_frames_->write(sample, frame_buffer_);
+  if (frame_buffer_.empty())
+    return;
+  recorder_->recordFrame(comms::TapDirection::kReceived, std::chrono::steady_clock::now(),
+                         frame_buffer_);
+  frame_buffer_.clear();
+}
+
 void RecordingUi::chooseAndOpenReplay() {
   const QString dir = recorder_
                           ? QFileInfo(QString::fromStdString(recorder_->path())).absolutePath()
@@ -322,8 +341,8 @@ QString RecordingUi::openReplay(const QString& path, double speed) {
     session_.report(EventLevel::kWarning, QString::fromStdString(warning));
   if (loaded.recording->receivedFrameCount() == 0)
     return tr(
-        "the recording holds no received link bytes (a simulator session: only a robot "
-        "link can be replayed)");
+        "the recording holds no received link bytes (no robot link and no simulator sample "
+        "in it, or made before simulator sessions were recorded as frames)");
   auto recording = std::make_shared<const recording::Recording>(std::move(*loaded.recording));
 
   if (replaying())

@@ -15,10 +15,12 @@
 #include <QTimer>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "app/gui/session_controller.hpp"
 #include "app/recording/session_dump.hpp"
+#include "comms/robot/telemetry_frame_writer.hpp"
 #include "widgets/replay/replay_bar.hpp"
 
 class QAction;
@@ -92,6 +94,7 @@ class RecordingUi : public QObject {
  private:
   void chooseAndOpenReplay();
   void onRobotState(const TelemetrySample& sample);
+  void onSampleIntegrated(const TelemetrySample& sample);
   void onTicked();
   void onConsole(EventLevel level, const QString& text);
   void onHealth(const widgets::LinkHealth& health);
@@ -127,6 +130,9 @@ class RecordingUi : public QObject {
 
   std::vector<recording::TrajectoryPoint> trajectory_;
   double robot_epoch_s_ = 0.0;
+  // Simulator mode: the samples as a robot's frames (reset with each new robot).
+  std::optional<comms::TelemetryFrameWriter> simulator_frames_;
+  std::vector<std::uint8_t> frame_buffer_;
   bool expect_initial_sample_ = false;
   bool collect_trajectory_ = false;
   bool installing_ = false;  // we are replacing the session's robot ourselves

@@ -184,8 +184,8 @@ QString RerunUi::start(const QString& path, std::optional<recording::RerunParame
     return QString::fromStdString(loaded.error);
   if (loaded.recording->receivedFrameCount() == 0)
     return tr(
-        "the recording holds no received link bytes (a simulator session: there is no sensor "
-        "stream to re-run)");
+        "the recording holds no received link bytes (no robot link and no simulator sample "
+        "in it, or made before simulator sessions were recorded as frames)");
   auto job = std::make_shared<Job>();
   std::vector<std::string> warnings = loaded.warnings;
   job->recorded = recording::recordedRerunParameters(loaded.recording->meta, &warnings);

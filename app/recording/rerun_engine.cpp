@@ -219,8 +219,8 @@ RerunResult rerunRecording(const Recording& recording, const RobotProfile& profi
     }
     if (recording.receivedFrameCount() == 0) {
       result.error =
-          "the recording holds no received link bytes (a simulator session: there is no sensor "
-          "stream to re-run)";
+          "the recording holds no received link bytes (no robot link and no simulator sample in "
+          "it, or made before simulator sessions were recorded as frames)";
       return result;
     }
     bool cancelled = false;

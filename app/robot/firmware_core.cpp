@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "comms/mavlink/messages.hpp"
+#include "comms/robot/telemetry_messages.hpp"
 #include "core/behaviour/wall_follower.hpp"
 
 namespace irgs::app {
@@ -14,32 +15,6 @@ namespace irgs::app {
 namespace mav = comms::mavlink;
 
 namespace {
-
-std::uint32_t toBootMs(double t_s) {
-  return static_cast<std::uint32_t>(std::llround(std::max(0.0, t_s) * 1000.0));
-}
-
-std::uint64_t toBootUs(double t_s) {
-  return static_cast<std::uint64_t>(std::llround(std::max(0.0, t_s) * 1e6));
-}
-
-std::uint16_t toCentimetres(double metres) {
-  return static_cast<std::uint16_t>(std::clamp(std::lround(metres * 100.0), 0L, 65534L));
-}
-
-std::uint16_t toMillimetres(double metres) {
-  return static_cast<std::uint16_t>(std::clamp(std::lround(metres * 1000.0), 0L, 65534L));
-}
-
-// MAVLink sensor yaw rotations count clockwise in 45 degree steps; our heading is CCW.
-std::uint8_t sensorOrientation(double heading_rad) {
-  const double cw_deg = -radToDeg(heading_rad);
-  const double steps = std::round(cw_deg / 45.0);
-  if (std::abs(cw_deg - steps * 45.0) > 1.0)
-    return static_cast<std::uint8_t>(mav::MavSensorOrientation::kCustom);
-  const long index = ((static_cast<long>(steps) % 8) + 8) % 8;  // 0 = kNone .. 7 = kYaw315
-  return static_cast<std::uint8_t>(index);
-}
 
 // MANUAL_CONTROL axis -> [-1, 1]; INT16_MAX marks an unused axis (treated as centred).
 double axis(std::int16_t value) {
@@ -956,7 +931,7 @@ std::optional<VelocityCommand> FirmwareCore::missionCommand() {
 
 void FirmwareCore::sendBehaviourStatus() {
   mav::IrgsBehaviourStatus status;
-  status.time_boot_ms = toBootMs(sim_.time_s());
+  status.time_boot_ms = comms::bootMs(sim_.time_s());
   status.command = behaviour_.command;
   status.state = static_cast<std::uint8_t>(behaviour_.state);
   status.progress = static_cast<float>(behaviour_.progress);
@@ -995,7 +970,7 @@ void FirmwareCore::sendLocalPosition(const TelemetrySample& sample) {
   const Pose2& p = sample.odometry_pose;
   const double v = sample.measured_velocity.linear_mps;
   mav::LocalPositionNed lp;
-  lp.time_boot_ms = toBootMs(sample.time_s);
+  lp.time_boot_ms = comms::bootMs(sample.time_s);
   lp.x = static_cast<float>(p.x);
   lp.y = static_cast<float>(-p.y);
   lp.vx = static_cast<float>(v * std::cos(p.theta));
@@ -1005,36 +980,24 @@ void FirmwareCore::sendLocalPosition(const TelemetrySample& sample) {
 
 void FirmwareCore::sendAttitude(const TelemetrySample& sample) {
   mav::Attitude att;
-  att.time_boot_ms = toBootMs(sample.time_s);
+  att.time_boot_ms = comms::bootMs(sample.time_s);
   att.yaw = static_cast<float>(wrapAngle(-sample.odometry_pose.theta));
   att.yawspeed = static_cast<float>(-sample.measured_velocity.angular_radps);
   send(att);
 }
 
 void FirmwareCore::sendPose2d(const TelemetrySample& sample) {
-  const Pose2& p = sample.odometry_pose;
-  mav::IrgsPose2d pose;
-  pose.time_boot_ms = toBootMs(sample.time_s);
-  pose.x = static_cast<float>(p.x);
-  pose.y = static_cast<float>(p.y);
-  pose.theta = static_cast<float>(wrapAngle(p.theta));
-  pose.v = static_cast<float>(sample.measured_velocity.linear_mps);
-  pose.omega = static_cast<float>(sample.measured_velocity.angular_radps);
-  send(pose);
+  send(comms::pose2dMessage(sample));
 }
 
 void FirmwareCore::sendEncoderTicks(const TelemetrySample& sample) {
-  mav::IrgsEncoderTicks ticks;
-  ticks.time_usec = toBootUs(sample.time_s);
-  ticks.left_ticks = sample.left_ticks;
-  ticks.right_ticks = sample.right_ticks;
-  send(ticks);
+  send(comms::encoderTicksMessage(sample));
 }
 
 void FirmwareCore::sendOdometryMessage(const TelemetrySample& sample) {
   const Pose2& p = sample.odometry_pose;
   mav::Odometry od;
-  od.time_usec = toBootUs(sample.time_s);
+  od.time_usec = comms::bootUs(sample.time_s);
   od.frame_id = static_cast<std::uint8_t>(mav::MavFrame::kLocalNed);
   od.child_frame_id = static_cast<std::uint8_t>(mav::MavFrame::kBodyFrd);
   // FLU -> NED: rotation by pi about x (y and yaw change sign).
@@ -1057,54 +1020,19 @@ void FirmwareCore::sendDistanceSensors(const TelemetrySample& sample) {
   for (std::size_t i = 0; i < specs.size() && i < 256; ++i) {
     if (!fresh_sonar_[i])
       continue;
-    const SonarSpec& spec = specs[i];
-    const SonarReading& r = *fresh_sonar_[i];
-    mav::DistanceSensor ds;
-    ds.time_boot_ms = toBootMs(sample.time_s);
-    ds.min_distance = toCentimetres(spec.min_range_m);
-    ds.max_distance = toCentimetres(spec.max_range_m);
-    // No echo up to the maximum range: max_distance + 1 ("out of range, nothing seen").
-    ds.current_distance =
-        r.echo ? toCentimetres(r.range_m) : static_cast<std::uint16_t>(ds.max_distance + 1);
-    ds.type = static_cast<std::uint8_t>(mav::MavDistanceSensor::kUltrasound);
-    ds.id = static_cast<std::uint8_t>(i);
-    ds.orientation = sensorOrientation(spec.mount.theta);
-    ds.covariance = std::numeric_limits<std::uint8_t>::max();  // unknown
-    ds.horizontal_fov = static_cast<float>(spec.beam_width_rad);
-    ds.vertical_fov = static_cast<float>(spec.beam_width_rad);
-    send(ds);
+    send(comms::distanceSensorMessage(sample.time_s, i, specs[i], *fresh_sonar_[i]));
   }
   std::fill(fresh_sonar_.begin(), fresh_sonar_.end(), std::nullopt);
 }
 
 void FirmwareCore::sendSonarScan() {
-  const auto& specs = sim_.profile().sonars;
-  mav::IrgsSonarScan scan;
-  scan.time_boot_ms = toBootMs(last_sonar_time_s_);
-  scan.count = static_cast<std::uint8_t>(std::min<std::size_t>(specs.size(), scan.range.size()));
-  for (std::size_t i = 0; i < scan.count; ++i) {
-    scan.range[i] = last_sonar_[i].echo ? toMillimetres(last_sonar_[i].range_m)
-                                        : std::numeric_limits<std::uint16_t>::max();
-  }
-  scan.fired = static_cast<std::uint16_t>(scan_fired_ & 0xFFFFu);
+  send(comms::sonarScanMessage(last_sonar_time_s_, last_sonar_,
+                               static_cast<std::uint16_t>(scan_fired_ & 0xFFFFu)));
   scan_fired_ = 0;
-  send(scan);
 }
 
 void FirmwareCore::sendContact(const TelemetrySample& sample) {
-  mav::IrgsContact c;
-  c.time_boot_ms = toBootMs(sample.time_s);
-  c.bumpers = sample.bumpers;
-  const auto& proximity = sample.proximity_m;
-  c.proximity_count =
-      static_cast<std::uint8_t>(std::min<std::size_t>(proximity.size(), c.proximity.size()));
-  const auto& specs = sim_.profile().proximity;
-  for (std::size_t i = 0; i < c.proximity_count; ++i) {
-    const bool nothing = i < specs.size() && proximity[i] >= specs[i].max_range_m - 1e-9;
-    c.proximity[i] =
-        nothing ? std::numeric_limits<std::uint16_t>::max() : toMillimetres(proximity[i]);
-  }
-  send(c);
+  send(comms::contactMessage(sample, sim_.profile()));
 }
 
 // SCALED_IMU in the body FRD frame (x forward, y right, z down): a resting IMU reads -1 g on z;
@@ -1114,7 +1042,7 @@ void FirmwareCore::sendScaledImu(const TelemetrySample& sample) {
   const double to_mg = 1000.0 / kStandardGravity;
   auto noise = [&](double sigma) { return sigma * unit_normal_(imu_rng_); };
   mav::ScaledImu imu;
-  imu.time_boot_ms = toBootMs(sample.time_s);
+  imu.time_boot_ms = comms::bootMs(sample.time_s);
   imu.xacc = toInt16((accel_forward_mps2_ + noise(config_.accel_noise_mps2)) * to_mg);
   // Centripetal acceleration v * omega points left (FLU +y), i.e. FRD -y.
   imu.yacc = toInt16(-(v.linear_mps * v.angular_radps + noise(config_.accel_noise_mps2)) * to_mg);

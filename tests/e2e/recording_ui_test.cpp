@@ -1,7 +1,8 @@
 // Recording and replay in the window (issue 6 items 2-3), offscreen: the File menu entry, a
-// simulator session recorded with its console lines, commands and ground truth, a simulator-only
-// recording refused for replay, and robot bytes from a recording replayed through a LinkedRobot
-// into the session as a live link would deliver them.
+// simulator session recorded with its console lines, commands, ground truth and its samples as
+// the frames a robot would have sent (decoded, they are the live samples; the recording replays),
+// a recording without received bytes refused for replay, and robot bytes from a recording
+// replayed through a LinkedRobot into the session as a live link would deliver them.
 
 #include "app/gui/recording_ui.hpp"
 
@@ -25,6 +26,7 @@
 #include "app/gui/main_window.hpp"
 #include "app/recording/recording_reader.hpp"
 #include "app/recording/replay_player.hpp"
+#include "app/recording/rerun_engine.hpp"
 #include "app/recording/session_recorder.hpp"
 #include "comms/mavlink/frame_encoder.hpp"
 #include "comms/mavlink/messages.hpp"
@@ -85,15 +87,88 @@ TEST_F(RecordingUiTest, RecordsConsoleLinesCommandsAndSimulatorTruth) {
   EXPECT_TRUE(std::any_of(r.events.begin(), r.events.end(), [](const auto& e) {
     return e.kind == "warning" && e.text == "a warning for the timeline";
   }));
-  EXPECT_TRUE(r.frames.empty());  // no robot link in this session
+  EXPECT_GT(r.receivedFrameCount(), 0u);  // the samples, as a robot's frames
   EXPECT_EQ(r.meta.at("robot"), session_->profile().name);
 
-  // A simulator-only recording cannot be replayed as a link; the session is left alone.
-  const QString refused = recording_->openReplay(path("sim.irgsrec"));
+  EXPECT_FALSE(recording_->openReplay(path("missing.irgsrec")).isEmpty());
+}
+
+TEST_F(RecordingUiTest, ASimulatorSessionIsRecordedAsTheFramesItsSamplesWouldBe) {
+  std::vector<TelemetrySample> live;
+  QObject::connect(session_.get(), &SessionController::sampleIntegrated,
+                   [&live](const TelemetrySample& sample) { live.push_back(sample); });
+  ASSERT_EQ(recording_->startRecording(path("sim.irgsrec")), QString());
+  session_->drive(0.25, 0.4);  // an arc, so x, y and heading all change
+  run(3.0);
+  session_->stopRobot();
+  run(0.5);
+  recording_->stopRecording();
+  ASSERT_GE(live.size(), 100u);
+
+  const recording::LoadResult loaded = recording::loadRecording(path("sim.irgsrec").toStdString());
+  ASSERT_TRUE(loaded.recording) << loaded.error;
+  EXPECT_EQ(loaded.recording->meta.count("telemetry_source"), 1u);
+  const recording::DecodedRecording decoded =
+      recording::decodeRecording(*loaded.recording, session_->profile());
+  EXPECT_EQ(decoded.stats.decoder.bad_crc, 0u);
+  // Every live sample comes back, in order, as the link would deliver it: the pose in float
+  // (a few micrometres at these distances), the heading likewise, sonar ranges in millimetres.
+  ASSERT_EQ(decoded.samples.size(), live.size());
+  std::size_t sonar_readings = 0;
+  for (std::size_t i = 0; i < live.size(); ++i) {
+    const TelemetrySample& want = live[i];
+    const TelemetrySample& got = decoded.samples[i].sample;
+    EXPECT_NEAR(got.time_s, want.time_s, 1e-3) << i;
+    EXPECT_NEAR(got.odometry_pose.x, want.odometry_pose.x, 1e-5) << i;
+    EXPECT_NEAR(got.odometry_pose.y, want.odometry_pose.y, 1e-5) << i;
+    EXPECT_NEAR(got.odometry_pose.theta, want.odometry_pose.theta, 1e-5) << i;
+    ASSERT_EQ(got.sonar.size(), want.sonar.size()) << i;
+    for (std::size_t k = 0; k < want.sonar.size(); ++k) {
+      EXPECT_EQ(got.sonar[k].sensor, want.sonar[k].sensor);
+      EXPECT_EQ(got.sonar[k].echo, want.sonar[k].echo);
+      if (got.sonar[k].echo && want.sonar[k].echo) {
+        EXPECT_NEAR(got.sonar[k].range_m, want.sonar[k].range_m, 0.00051);
+      }
+    }
+    sonar_readings += want.sonar.size();
+  }
+  EXPECT_GT(sonar_readings, 0u);
+
+  // Re-run with the recorded parameters: the map the session built live, to rounding (the pose
+  // crossed the "link" in float, the ranges in millimetres).
+  const recording::RerunParameters recorded =
+      recording::recordedRerunParameters(loaded.recording->meta);
+  const recording::RerunResult rerun = recording::rerunRecording(
+      *loaded.recording, session_->profile(), WorldMap{}, recorded, recorded);
+  ASSERT_EQ(rerun.error, "");
+  const GridComparison live_map = compareGrids(session_->grid(), rerun.recorded.grid);
+  EXPECT_GT(live_map.compared_cells, 1000u);
+  EXPECT_GT(live_map.agreement, 0.99);
+  EXPECT_GT(live_map.occupied_tolerant.f1, 0.98);
+
+  // And it replays as a link: the replayed robot ends where the simulated one did.
+  ASSERT_EQ(recording_->openReplay(path("sim.irgsrec"), 16.0), QString());
+  ASSERT_TRUE(recording_->replaying());
+  EXPECT_EQ(session_->simulationControl(), nullptr);
+  QSignalSpy drained(recording_, &RecordingUi::replayDrained);
+  session_->start();
+  ASSERT_TRUE(drained.wait(20000)) << "the replay never drained";
+  ASSERT_TRUE(session_->latestSample());
+  EXPECT_NEAR(session_->latestSample()->odometry_pose.x, live.back().odometry_pose.x, 1e-5);
+  EXPECT_NEAR(session_->latestSample()->odometry_pose.y, live.back().odometry_pose.y, 1e-5);
+}
+
+TEST_F(RecordingUiTest, ARecordingWithoutReceivedBytesIsRefusedForReplay) {
+  {
+    auto opened = recording::SessionRecorder::create(path("truth.irgsrec").toStdString(), {});
+    ASSERT_TRUE(opened.recorder) << opened.error;
+    opened.recorder->recordTruth(0.0, 0.0, 0.0);
+    opened.recorder->recordTruth(0.1, 0.0, 0.0);
+  }
+  const QString refused = recording_->openReplay(path("truth.irgsrec"));
   EXPECT_TRUE(refused.contains(QStringLiteral("no received link bytes"))) << refused.toStdString();
   EXPECT_FALSE(recording_->replaying());
   EXPECT_NE(session_->simulationControl(), nullptr);
-  EXPECT_FALSE(recording_->openReplay(path("missing.irgsrec")).isEmpty());
 }
 
 TEST_F(RecordingUiTest, ReplaysRecordedRobotBytesThroughALinkedRobotIntoTheSession) {

@@ -167,13 +167,14 @@ TEST_F(RerunUiTest, TheDialogStartsAWorkerRunAndTheWindowComparesBothRuns) {
   EXPECT_TRUE(QFile::exists(out + QStringLiteral("/recorded_map.png")));
 }
 
-TEST_F(RerunUiTest, ACancelledDialogStartsNothingAndASimulatorRecordingIsRefused) {
+TEST_F(RerunUiTest, ACancelledDialogStartsNothingAndARecordingWithoutSamplesIsRefused) {
   rerun_->setDialogHook(
       [](RerunDialog& dialog) { QTimer::singleShot(0, &dialog, [&dialog] { dialog.reject(); }); });
   EXPECT_EQ(rerun_->start(path_), QString());
   EXPECT_FALSE(rerun_->running());
   EXPECT_EQ(rerun_->result(), nullptr);
 
+  // A simulator session stopped before its first tick: no sample, so no received bytes.
   const QString sim = dir_.filePath(QStringLiteral("sim.irgsrec"));
   ASSERT_EQ(recording_->startRecording(sim), QString());
   recording_->stopRecording();
