@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <vector>
@@ -583,10 +584,44 @@ TEST(TelemetryAssembler, TheFirmwaresFloorSensorCountsDriveTheHostsMouseOdometry
   const auto it = truth.find(std::llround(samples.back().time_s * 1000.0));
   ASSERT_NE(it, truth.end());
   const Pose2 estimate = runner.lastStep().estimate;
+  std::printf("mouse over the firmware's frames: %.3f m travelled, final error %.2f mm, %.3f deg\n",
+              travelled, 1e3 * (estimate.position() - it->second.position()).norm(),
+              radToDeg(std::abs(wrapAngle(estimate.theta - it->second.theta))));
   EXPECT_LT((estimate.position() - it->second.position()).norm(), 0.003)
       << estimate.x << " " << estimate.y << " vs " << it->second.x << " " << it->second.y;
   EXPECT_LT(std::abs(wrapAngle(estimate.theta - it->second.theta)), degToRad(0.2));
   EXPECT_GT(std::abs(wrapAngle(it->second.theta - start.theta)), 0.5);  // it really turned
+}
+
+// A floor gap beyond the sensors' lift-off height: the firmware reports them lifted, and the
+// host's mouse odometry skips those intervals instead of taking the missing counts for rest.
+TEST(TelemetryAssembler, LiftedFloorSensorsReachTheHostAsLifted) {
+  const RobotProfile robot = testing::robotProfile("mouse_type20_004.json");
+  SimConfig sim;
+  sim = idealSimConfig(sim);
+  sim.mouse_floor_gap_m = 0.005;  // the rig's max_lift_m is 2 mm
+  app::FirmwareCore fw(Simulator(testing::defaultMap(), robot, sim), {});
+  TelemetryAssembler assembler(robot);
+  runWithTruth(fw, assembler, 2.0, 500, 0);
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 30u);
+  EstimatorRunnerConfig config;
+  config.kind = EstimatorKind::kMouseOdometry;
+  EstimatorRunner runner(testing::defaultMap(), robot, samples.front().odometry_pose, config);
+  for (const auto& s : samples) {
+    ASSERT_TRUE(s.mouse.has_value());
+    EXPECT_EQ(s.mouse->right.status, MouseStatus::kLifted);
+    EXPECT_EQ(s.mouse->left.status, MouseStatus::kLifted);
+    runner.feed(s);
+  }
+  EXPECT_GT(runner.metrics().readings, 30);
+  EXPECT_EQ(runner.metrics().accepted, 0);
+  EXPECT_GT(
+      (samples.back().odometry_pose.position() - samples.front().odometry_pose.position()).norm(),
+      0.3);  // the wheels moved it
+  EXPECT_LT(
+      (runner.lastStep().estimate.position() - samples.front().odometry_pose.position()).norm(),
+      1e-9);  // the mice saw nothing
 }
 
 // Paper 000's three-caster robot behind the firmware: the six encoders and the robot's own J+
@@ -624,6 +659,14 @@ TEST(TelemetryAssembler, TheFirmwaresCasterEncodersAndResidualReachTheHostsCaste
   const Pose2& robot_odometry = samples.back().odometry_pose;
   const Pose2& host = runner.lastStep().dead_reckoning;
   EXPECT_GT((robot_odometry.position() - samples.front().odometry_pose.position()).norm(), 1.0);
+  std::printf(
+      "caster over the firmware's frames: %zu samples, host J+ DR %.2f mm / %.3f deg off "
+      "the robot's, mean residual used %.3e rad (robot's %.3e)\n",
+      samples.size(), 1e3 * (host.position() - robot_odometry.position()).norm(),
+      radToDeg(std::abs(wrapAngle(host.theta - robot_odometry.theta))),
+      runner.metrics().mean_caster_residual_rad,
+      samples.back().casters->residual_sum_rad /
+          static_cast<double>(samples.back().casters->residual_periods));
   EXPECT_LT((host.position() - robot_odometry.position()).norm(), 0.005);
   EXPECT_LT(std::abs(wrapAngle(host.theta - robot_odometry.theta)), degToRad(0.2));
   // The robot's mean residual per period, not the one of the re-split 50 ms counts.
