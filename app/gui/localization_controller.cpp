@@ -393,11 +393,13 @@ void LocalizationController::printStep(const EstimatorStep& step) {
   }
   if (step.caster_periods > 0)
     session_.report(EventLevel::kSensor,
-                    tr("caster J+ prediction: %1 periods, mean residual ‖e‖ = %2 mrad, Q = λ‖e‖ "
-                       "with λ = %3")
+                    tr("caster J+ prediction: %1 periods, mean residual ‖e‖ = %2 mrad (%4), "
+                       "Q = λ‖e‖ with λ = %3")
                         .arg(step.caster_periods)
                         .arg(1000.0 * step.caster_residual_sum / step.caster_periods, 0, 'f', 3)
-                        .arg(runner_->config().caster_lambda, 0, 'g', 4));
+                        .arg(runner_->config().caster_lambda, 0, 'g', 4)
+                        .arg(step.caster_residual_from_robot ? tr("the robot's own")
+                                                             : tr("of the re-split counts")));
   for (const StereoReadingRecord& r : step.readings) {
     QString text = tr("%1 sensor: ").arg(QString::fromLatin1(sensorName(r.sensor)));
     if (r.echo != EchoStatus::kEcho) {

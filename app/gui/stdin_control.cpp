@@ -16,6 +16,7 @@
 #include "app/gui/link_controller.hpp"
 #include "app/gui/link_format.hpp"
 #include "app/gui/link_ui.hpp"
+#include "app/gui/localization_controller.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/parameters_controller.hpp"
 #include "app/gui/planning_controller.hpp"
@@ -293,6 +294,31 @@ QString StdinControl::statusLine() const {
               .arg(indices)
               .arg(distance_m, 0, 'f', 2)
               .arg(obstacles);
+  const LocalizationController* loc = link_.parent() != nullptr
+                                          ? link_.parent()->findChild<LocalizationController*>(
+                                                QString(), Qt::FindDirectChildrenOnly)
+                                          : nullptr;
+  if (loc == nullptr || loc->runner() == nullptr)
+    return line + QStringLiteral(" loc=none");
+  const EstimatorRunner& runner = *loc->runner();
+  const EstimatorStep& step = runner.lastStep();
+  line += QStringLiteral(" loc=%1 loc_steps=%2 loc_x=%3 loc_y=%4 loc_theta=%5 loc_dr_x=%6")
+              .arg(QString::fromUtf8(toString(runner.kind())))
+              .arg(step.index + 1)
+              .arg(step.estimate.x, 0, 'f', 4)
+              .arg(step.estimate.y, 0, 'f', 4)
+              .arg(step.estimate.theta, 0, 'f', 4)
+              .arg(step.dead_reckoning.x, 0, 'f', 4);
+  line += QStringLiteral(
+              " loc_dr_y=%1 loc_dr_theta=%2 loc_readings=%3 loc_accepted=%4 "
+              "loc_caster_periods=%5 loc_mean_residual=%6 loc_robot_residual=%7")
+              .arg(step.dead_reckoning.y, 0, 'f', 4)
+              .arg(step.dead_reckoning.theta, 0, 'f', 4)
+              .arg(runner.metrics().readings)
+              .arg(runner.metrics().accepted)
+              .arg(runner.metrics().caster_periods)
+              .arg(runner.metrics().mean_caster_residual_rad, 0, 'e', 3)
+              .arg(step.caster_residual_from_robot ? 1 : 0);
   return line;
 }
 

@@ -19,12 +19,17 @@
 // Status line ("status" then key=value pairs, one line, flushed):
 //   wall_s link samples odom_hz sonar_hz sonar_readings_per_s explored_m2 x y theta v w
 //   cmd_v cmd_w link_losses reconnects mb mb_progress mb_indices mb_distance_m mb_obstacles
+//   loc [loc_steps loc_x loc_y loc_theta loc_dr_x loc_dr_y loc_dr_theta loc_readings
+//   loc_accepted loc_caster_periods loc_mean_residual loc_robot_residual]
 // link is "none" (simulator) or the link state (connecting, connected, lost) of a MAVLink or
 // ARCOS robot; samples and the rates are the robot's telemetry as received. mb is the
 // map-building phase with '_' for spaces: "none" when the current or last behaviour is not map
 // building, "done", "failed" or "aborted" once it ended (until the next start); mb_indices the
 // position indices dropped, mb_distance_m the odometry path driven, mb_obstacles the obstacles
-// circumnavigated.
+// circumnavigated. loc is the running estimator ("none", or its --localize name) and, when one
+// runs, its newest step: samples fed, estimate and dead reckoning (m, rad), its readings and
+// accepted counts, the three-caster EKF's J+ periods and mean residual ||e|| (rad) and whether
+// the last step used the robot's own reported residual (1) or the re-split one (0).
 //
 // Console lines: once started, every console message except the periodic sensor lines is also
 // printed as "console info|warning|error <text>" (one line), so a test can read what the user

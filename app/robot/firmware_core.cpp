@@ -48,6 +48,13 @@ double periodFromRate(double hz) {
   return hz > 0.0 ? 1.0 / hz : 0.0;
 }
 
+// Counts are cumulative since boot; on the wire they are int32 (68 km of travel at 800 cpi,
+// 2.1e9 counts of a caster encoder), clamped rather than wrapped beyond that.
+std::int32_t wireCounts(std::int64_t counts) {
+  return static_cast<std::int32_t>(std::clamp<std::int64_t>(
+      counts, std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()));
+}
+
 }  // namespace
 
 FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base) {
@@ -60,6 +67,8 @@ FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base) {
   base.send_sonar_scan = true;
   base.send_distance_sensor = false;
   base.send_encoder_ticks = false;
+  base.send_mouse_counts = false;
+  base.send_caster_encoders = false;
   base.imu_period_s = 0.0;
   base.status_period_s = 5.0;
   return base;
@@ -98,7 +107,14 @@ FirmwareCore::FirmwareCore(Simulator simulator, FirmwareConfig config)
   stream(mav::Attitude::kId, ParamId::kRatePose, config_.send_local_position, pose);
   stream(mav::Odometry::kId, ParamId::kRatePose, config_.send_odometry, pose);
   stream(mav::IrgsPose2d::kId, ParamId::kRatePose, config_.send_pose_2d, pose);
-  stream(mav::IrgsEncoderTicks::kId, ParamId::kRatePose, config_.send_encoder_ticks, pose);
+  const RobotProfile& profile = sim_.profile();
+  const bool caster_robot = profile.drive.type == DriveType::kThreeCaster;
+  const bool mice = sim_.config().mouse_sensors && profile.drive.extra.contains("mouse_sensors");
+  stream(mav::IrgsEncoderTicks::kId, ParamId::kRatePose,
+         config_.send_encoder_ticks && !caster_robot, pose);
+  stream(mav::IrgsMouseCounts::kId, ParamId::kRatePose, config_.send_mouse_counts && mice, pose);
+  stream(mav::IrgsCasterEncoders::kId, ParamId::kRatePose,
+         config_.send_caster_encoders && caster_robot, pose);
   stream(mav::DistanceSensor::kId, ParamId::kRateSonar, config_.send_distance_sensor,
          config_.sonar_period_s);
   stream(mav::IrgsSonarScan::kId, ParamId::kRateSonar,
@@ -546,6 +562,10 @@ void FirmwareCore::advance(double now_s) {
     applySafety();
     sim_.step(sample_);
     updateImuAndBattery(dt);
+    if (sample_.mouse) {
+      mouse_worst_right_ = std::max(mouse_worst_right_, sample_.mouse->right.status);
+      mouse_worst_left_ = std::max(mouse_worst_left_, sample_.mouse->left.status);
+    }
     const std::uint32_t pressed = sample_.bumpers & ~bumpers_;
     const bool changed = sample_.bumpers != bumpers_;
     bumpers_ = sample_.bumpers;
@@ -634,6 +654,12 @@ void FirmwareCore::sendStream(std::uint32_t message_id, const TelemetrySample& s
       break;
     case mav::IrgsEncoderTicks::kId:
       sendEncoderTicks(sample);
+      break;
+    case mav::IrgsMouseCounts::kId:
+      sendMouseCounts(sample);
+      break;
+    case mav::IrgsCasterEncoders::kId:
+      sendCasterEncoders(sample);
       break;
     case mav::DistanceSensor::kId:
       sendDistanceSensors(sample);
@@ -992,6 +1018,41 @@ void FirmwareCore::sendPose2d(const TelemetrySample& sample) {
 
 void FirmwareCore::sendEncoderTicks(const TelemetrySample& sample) {
   send(comms::encoderTicksMessage(sample));
+}
+
+void FirmwareCore::sendMouseCounts(const TelemetrySample& sample) {
+  if (!sample.mouse)
+    return;
+  mav::IrgsMouseCounts m;
+  m.time_usec = toBootUs(sample.time_s);
+  m.right_x = wireCounts(sample.mouse->right.dx);
+  m.right_y = wireCounts(sample.mouse->right.dy);
+  m.left_x = wireCounts(sample.mouse->left.dx);
+  m.left_y = wireCounts(sample.mouse->left.dy);
+  // MouseStatus and IRGS_MOUSE_STATUS share their values (tracking 0, saturated 1, lifted 2).
+  m.right_status = static_cast<std::uint8_t>(mouse_worst_right_);
+  m.left_status = static_cast<std::uint8_t>(mouse_worst_left_);
+  mouse_worst_right_ = mouse_worst_left_ = MouseStatus::kTracking;
+  send(m);
+}
+
+void FirmwareCore::sendCasterEncoders(const TelemetrySample& sample) {
+  if (!sample.casters)
+    return;
+  const CasterEncoders& c = *sample.casters;
+  mav::IrgsCasterEncoders m;
+  m.time_usec = toBootUs(sample.time_s);
+  for (std::size_t i = 0; i < 3; ++i) {
+    m.drive[i] = wireCounts(c.drive_ticks[i]);
+    m.steering[i] = wireCounts(c.steering_ticks[i]);
+  }
+  if (c.residual_periods > 0) {
+    m.residual_sum = c.residual_sum_rad;
+    m.residual_periods = static_cast<std::uint32_t>(
+        std::min<std::int64_t>(c.residual_periods, std::numeric_limits<std::uint32_t>::max()));
+    m.flags = static_cast<std::uint8_t>(mav::IrgsCasterFlags::kResidualValid);
+  }
+  send(m);
 }
 
 void FirmwareCore::sendOdometryMessage(const TelemetrySample& sample) {

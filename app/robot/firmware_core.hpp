@@ -61,7 +61,11 @@ struct FirmwareConfig {
   bool send_pose_2d = false;
   bool send_sonar_scan = false;
   bool send_distance_sensor = true;
-  bool send_encoder_ticks = true;
+  bool send_encoder_ticks = true;  // not for a three-caster robot (it has no left/right wheels)
+  // Floor sensors (IRGS_MOUSE_COUNTS) and caster encoders (IRGS_CASTER_ENCODERS), with the pose
+  // stream, when the robot has them (a drive/mouse_sensors rig; drive type "three_caster").
+  bool send_mouse_counts = true;
+  bool send_caster_encoders = true;
   // Safety rules. A MANUAL_CONTROL older than teleop_timeout_s no longer drives; with
   // heartbeats missing for gcs_timeout_s all motion stops. Safety stops brake at once.
   double teleop_timeout_s = 0.3;
@@ -82,7 +86,8 @@ struct FirmwareConfig {
 
 // The compact profile for slow links (9600 baud HC-05 modules, docs/protocol.md sections 4-5):
 // IRGS_POSE_2D at 10 Hz, IRGS_SONAR_SCAN at 5 Hz, IRGS_CONTACT at 1 Hz (and on change),
-// HEARTBEAT; no ODOMETRY, LOCAL_POSITION_NED, ATTITUDE, DISTANCE_SENSOR or encoder ticks.
+// HEARTBEAT; no ODOMETRY, LOCAL_POSITION_NED, ATTITUDE, DISTANCE_SENSOR, encoder ticks, floor
+// sensor counts or caster encoders.
 // SYS_STATUS at 0.2 Hz, no SCALED_IMU. About 650 B/s of the 960 B/s a 9600 baud UART moves.
 FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base = {});
 
@@ -158,6 +163,8 @@ class FirmwareCore {
   void sendOdometryMessage(const TelemetrySample& sample);
   void sendPose2d(const TelemetrySample& sample);
   void sendEncoderTicks(const TelemetrySample& sample);
+  void sendMouseCounts(const TelemetrySample& sample);
+  void sendCasterEncoders(const TelemetrySample& sample);
   void sendDistanceSensors(const TelemetrySample& sample);
   void sendSonarScan();
   void sendContact(const TelemetrySample& sample);
@@ -242,6 +249,9 @@ class FirmwareCore {
   std::vector<SonarReading> last_sonar_;                  // newest reading per sonar (scan)
   std::uint32_t scan_fired_ = 0;  // sonars that fired since the last IRGS_SONAR_SCAN
   double last_sonar_time_s_ = 0.0;
+  // Worst floor-sensor state (MouseStatus order) of any step since the last IRGS_MOUSE_COUNTS.
+  MouseStatus mouse_worst_right_ = MouseStatus::kTracking;
+  MouseStatus mouse_worst_left_ = MouseStatus::kTracking;
 
   // IMU and battery models.
   std::mt19937_64 imu_rng_;

@@ -445,6 +445,16 @@ enum class IrgsSonarFlags : std::uint8_t {
   kR2Valid = 2,
 };
 
+enum class IrgsMouseStatus : std::uint8_t {
+  kTracking = 0,
+  kSaturated = 1,
+  kLifted = 2,
+};
+
+enum class IrgsCasterFlags : std::uint8_t {
+  kResidualValid = 1,
+};
+
 // HEARTBEAT (minimal.xml): The heartbeat message shows that a system or component is present and
 // responding. The type and autopilot fields (along with the message component id), allow the
 // receiving system to treat further messages from this system appropriately (e.g. by laying out the
@@ -3587,8 +3597,193 @@ struct IrgsPose2d {
   friend bool operator==(const IrgsPose2d&, const IrgsPose2d&) = default;
 };
 
+// IRGS_MOUSE_COUNTS (irgs.xml): Two optical floor (mouse) sensors, right and left (paper 004): the
+// displacement of the floor under each sensor, in the sensor's own axes, as counts accumulated
+// since robot boot (two frames' difference is the motion in between, so a lost frame loses
+// nothing). Status: the worst state of any reading since the previous frame.
+struct IrgsMouseCounts {
+  static constexpr std::uint32_t kId = 48006;
+  static constexpr std::string_view kName = "IRGS_MOUSE_COUNTS";
+  static constexpr std::uint8_t kCrcExtra = 154;
+  static constexpr std::uint8_t kMinLength = 26;  // base fields only
+  static constexpr std::uint8_t kMaxLength = 26;  // with extensions
+
+  std::uint64_t time_usec = 0;  // [us] Time of the newest reading since robot boot.
+  // Right sensor, cumulative counts along its x axis (counts per inch: robot profile).
+  std::int32_t right_x = 0;
+  std::int32_t right_y = 0;  // Right sensor, cumulative counts along its y axis.
+  std::int32_t left_x = 0;   // Left sensor, cumulative counts along its x axis.
+  std::int32_t left_y = 0;   // Left sensor, cumulative counts along its y axis.
+  // (IRGS_MOUSE_STATUS) Right sensor state since the previous frame.
+  std::uint8_t right_status = 0;
+  std::uint8_t left_status = 0;  // (IRGS_MOUSE_STATUS) Left sensor state since the previous frame.
+
+  // Writes all kMaxLength bytes (untrimmed); the frame encoder trims trailing zeros.
+  void pack(std::span<std::uint8_t, kMaxLength> out) const {
+    wire::put(out.data() + 0, time_usec);
+    wire::put(out.data() + 8, right_x);
+    wire::put(out.data() + 12, right_y);
+    wire::put(out.data() + 16, left_x);
+    wire::put(out.data() + 20, left_y);
+    wire::put(out.data() + 24, right_status);
+    wire::put(out.data() + 25, left_status);
+  }
+  // Bytes beyond payload.size() read as zero (MAVLink 2 re-extension of trimmed payloads).
+  static IrgsMouseCounts unpack(std::span<const std::uint8_t> payload) {
+    IrgsMouseCounts m;
+    wire::get(payload, 0, m.time_usec);
+    wire::get(payload, 8, m.right_x);
+    wire::get(payload, 12, m.right_y);
+    wire::get(payload, 16, m.left_x);
+    wire::get(payload, 20, m.left_y);
+    wire::get(payload, 24, m.right_status);
+    wire::get(payload, 25, m.left_status);
+    return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 7> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"right_x", "", FieldType::kInt32, 8, -1, false, false},
+      {"right_y", "", FieldType::kInt32, 12, -1, false, false},
+      {"left_x", "", FieldType::kInt32, 16, -1, false, false},
+      {"left_y", "", FieldType::kInt32, 20, -1, false, false},
+      {"right_status", "", FieldType::kUint8, 24, -1, false, false},
+      {"left_status", "", FieldType::kUint8, 25, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        right_x = static_cast<std::int32_t>(value);
+        return true;
+      case 2:
+        right_y = static_cast<std::int32_t>(value);
+        return true;
+      case 3:
+        left_x = static_cast<std::int32_t>(value);
+        return true;
+      case 4:
+        left_y = static_cast<std::int32_t>(value);
+        return true;
+      case 5:
+        right_status = static_cast<std::uint8_t>(value);
+        return true;
+      case 6:
+        left_status = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
+  friend bool operator==(const IrgsMouseCounts&, const IrgsMouseCounts&) = default;
+};
+
+// IRGS_CASTER_ENCODERS (irgs.xml): The six encoders of a three-caster steer/drive robot (paper
+// 000), cumulative since robot boot, and the robot's own least-squares (J+) odometry residuals: the
+// sum of ||e|| over its dead-reckoning periods, so a ground station that sees coarser samples than
+// the robot's period can use the robot's residual for the adaptive process noise Q = lambda ||e||.
+struct IrgsCasterEncoders {
+  static constexpr std::uint32_t kId = 48007;
+  static constexpr std::string_view kName = "IRGS_CASTER_ENCODERS";
+  static constexpr std::uint8_t kCrcExtra = 55;
+  static constexpr std::uint8_t kMinLength = 45;  // base fields only
+  static constexpr std::uint8_t kMaxLength = 45;  // with extensions
+
+  std::uint64_t time_usec = 0;  // [us] Sample time since robot boot.
+  // [rad] Sum since boot of the per-period least-squares residual norms ||e|| (valid if flagged).
+  double residual_sum = 0;
+  // Cumulative drive wheel rotation per caster, forward positive (counts per radian: robot
+  // profile).
+  std::array<std::int32_t, 3> drive{};
+  // Steering angle per caster relative to the body, absolute, unwrapped (0 = trailing straight
+  // behind its axis).
+  std::array<std::int32_t, 3> steering{};
+  // Number of dead-reckoning periods in residual_sum (valid if flagged).
+  std::uint32_t residual_periods = 0;
+  std::uint8_t flags = 0;  // (IRGS_CASTER_FLAGS) What is valid besides the counts.
+
+  // Writes all kMaxLength bytes (untrimmed); the frame encoder trims trailing zeros.
+  void pack(std::span<std::uint8_t, kMaxLength> out) const {
+    wire::put(out.data() + 0, time_usec);
+    wire::put(out.data() + 8, residual_sum);
+    wire::putArray(out.data() + 16, drive);
+    wire::putArray(out.data() + 28, steering);
+    wire::put(out.data() + 40, residual_periods);
+    wire::put(out.data() + 44, flags);
+  }
+  // Bytes beyond payload.size() read as zero (MAVLink 2 re-extension of trimmed payloads).
+  static IrgsCasterEncoders unpack(std::span<const std::uint8_t> payload) {
+    IrgsCasterEncoders m;
+    wire::get(payload, 0, m.time_usec);
+    wire::get(payload, 8, m.residual_sum);
+    wire::getArray(payload, 16, m.drive);
+    wire::getArray(payload, 28, m.steering);
+    wire::get(payload, 40, m.residual_periods);
+    wire::get(payload, 44, m.flags);
+    return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 10> kFields{{
+      {"time_usec", "us", FieldType::kUint64, 0, -1, false, false},
+      {"residual_sum", "rad", FieldType::kDouble, 8, -1, false, false},
+      {"drive", "", FieldType::kInt32, 16, 0, false, false},
+      {"drive", "", FieldType::kInt32, 20, 1, false, false},
+      {"drive", "", FieldType::kInt32, 24, 2, false, false},
+      {"steering", "", FieldType::kInt32, 28, 0, false, false},
+      {"steering", "", FieldType::kInt32, 32, 1, false, false},
+      {"steering", "", FieldType::kInt32, 36, 2, false, false},
+      {"residual_periods", "", FieldType::kUint32, 40, -1, false, false},
+      {"flags", "", FieldType::kUint8, 44, -1, false, false},
+  }};
+  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t index, double value) {
+    switch (index) {
+      case 0:
+        time_usec = static_cast<std::uint64_t>(value);
+        return true;
+      case 1:
+        residual_sum = static_cast<double>(value);
+        return true;
+      case 2:
+        drive[0] = static_cast<std::int32_t>(value);
+        return true;
+      case 3:
+        drive[1] = static_cast<std::int32_t>(value);
+        return true;
+      case 4:
+        drive[2] = static_cast<std::int32_t>(value);
+        return true;
+      case 5:
+        steering[0] = static_cast<std::int32_t>(value);
+        return true;
+      case 6:
+        steering[1] = static_cast<std::int32_t>(value);
+        return true;
+      case 7:
+        steering[2] = static_cast<std::int32_t>(value);
+        return true;
+      case 8:
+        residual_periods = static_cast<std::uint32_t>(value);
+        return true;
+      case 9:
+        flags = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
+  friend bool operator==(const IrgsCasterEncoders&, const IrgsCasterEncoders&) = default;
+};
+
 // Every generated message, sorted by id (findMessageInfo searches it).
-inline constexpr std::array<MessageInfo, 32> kGeneratedMessages{{
+inline constexpr std::array<MessageInfo, 34> kGeneratedMessages{{
     messageInfoOf<Heartbeat>(),          messageInfoOf<SysStatus>(),
     messageInfoOf<ParamRequestRead>(),   messageInfoOf<ParamRequestList>(),
     messageInfoOf<ParamValue>(),         messageInfoOf<ParamSet>(),
@@ -3605,10 +3800,11 @@ inline constexpr std::array<MessageInfo, 32> kGeneratedMessages{{
     messageInfoOf<IrgsStereoSonar>(),    messageInfoOf<IrgsEncoderTicks>(),
     messageInfoOf<IrgsContact>(),        messageInfoOf<IrgsBehaviourStatus>(),
     messageInfoOf<IrgsSonarScan>(),      messageInfoOf<IrgsPose2d>(),
+    messageInfoOf<IrgsMouseCounts>(),    messageInfoOf<IrgsCasterEncoders>(),
 }};
 
 // Every generated message's field table, sorted by id (findMessageFields searches it).
-inline constexpr std::array<MessageFields, 32> kGeneratedMessageFields{{
+inline constexpr std::array<MessageFields, 34> kGeneratedMessageFields{{
     messageFieldsOf<Heartbeat>(),          messageFieldsOf<SysStatus>(),
     messageFieldsOf<ParamRequestRead>(),   messageFieldsOf<ParamRequestList>(),
     messageFieldsOf<ParamValue>(),         messageFieldsOf<ParamSet>(),
@@ -3625,6 +3821,7 @@ inline constexpr std::array<MessageFields, 32> kGeneratedMessageFields{{
     messageFieldsOf<IrgsStereoSonar>(),    messageFieldsOf<IrgsEncoderTicks>(),
     messageFieldsOf<IrgsContact>(),        messageFieldsOf<IrgsBehaviourStatus>(),
     messageFieldsOf<IrgsSonarScan>(),      messageFieldsOf<IrgsPose2d>(),
+    messageFieldsOf<IrgsMouseCounts>(),    messageFieldsOf<IrgsCasterEncoders>(),
 }};
 
 // Every generated message type, for code that handles all of them (tests, dispatch).
@@ -3634,6 +3831,7 @@ using GeneratedMessageTypes =
                RawImu, ScaledImu, Attitude, WheelDistance, Odometry, LocalPositionNed,
                MissionRequestList, MissionCount, MissionRequestInt, MissionItemInt, MissionAck,
                MissionClearAll, MissionCurrent, MissionItemReached, IrgsStereoSonar,
-               IrgsEncoderTicks, IrgsContact, IrgsBehaviourStatus, IrgsSonarScan, IrgsPose2d>;
+               IrgsEncoderTicks, IrgsContact, IrgsBehaviourStatus, IrgsSonarScan, IrgsPose2d,
+               IrgsMouseCounts, IrgsCasterEncoders>;
 
 }  // namespace irgs::comms::mavlink

@@ -24,6 +24,19 @@ double quaternionYaw(const std::array<float, 4>& q) {
   return std::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z));
 }
 
+// IRGS_MOUSE_STATUS -> MouseStatus; an unknown state is taken as "lifted" (counts not trusted).
+MouseStatus mouseStatus(std::uint8_t wire) {
+  switch (static_cast<mav::IrgsMouseStatus>(wire)) {
+    case mav::IrgsMouseStatus::kTracking:
+      return MouseStatus::kTracking;
+    case mav::IrgsMouseStatus::kSaturated:
+      return MouseStatus::kSaturated;
+    case mav::IrgsMouseStatus::kLifted:
+      break;
+  }
+  return MouseStatus::kLifted;
+}
+
 bool finite(std::initializer_list<double> values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
@@ -129,6 +142,8 @@ void TelemetryAssembler::release() {
   }
   sample.left_ticks = carried_.left_ticks;
   sample.right_ticks = carried_.right_ticks;
+  sample.mouse = carried_.mouse;
+  sample.casters = carried_.casters;
   sample.bumpers = carried_.bumpers;
   sample.proximity_m = carried_.proximity_m;
   attachGyro(sample);
@@ -181,6 +196,8 @@ void TelemetryAssembler::flushLate() {
   late_.reset();
   sample.left_ticks = carried_.left_ticks;
   sample.right_ticks = carried_.right_ticks;
+  sample.mouse = carried_.mouse;
+  sample.casters = carried_.casters;
   sample.bumpers = carried_.bumpers;
   sample.proximity_m = carried_.proximity_m;
   attachGyro(sample);
@@ -339,6 +356,40 @@ void TelemetryAssembler::onFrame(const mav::Frame& frame, double now_s) {
         advanceTo(usToMs(ticks->time_usec), false);
       carried_.left_ticks = ticks->left_ticks;
       carried_.right_ticks = ticks->right_ticks;
+      break;
+    }
+    case mav::IrgsMouseCounts::kId: {
+      const auto m = frame.as<mav::IrgsMouseCounts>();
+      if (!m)
+        return;
+      if (!belongsToHeldRelease(usToMs(m->time_usec)))
+        advanceTo(usToMs(m->time_usec), false);
+      MouseReading reading;
+      reading.right = {m->right_x, m->right_y, mouseStatus(m->right_status)};
+      reading.left = {m->left_x, m->left_y, mouseStatus(m->left_status)};
+      carried_.mouse = reading;
+      ++counters_.mouse_frames;
+      break;
+    }
+    case mav::IrgsCasterEncoders::kId: {
+      const auto c = frame.as<mav::IrgsCasterEncoders>();
+      if (!c)
+        return;
+      if (!belongsToHeldRelease(usToMs(c->time_usec)))
+        advanceTo(usToMs(c->time_usec), false);
+      CasterEncoders encoders;
+      for (std::size_t i = 0; i < 3; ++i) {
+        encoders.drive_ticks[i] = c->drive[i];
+        encoders.steering_ticks[i] = c->steering[i];
+      }
+      const bool residual =
+          (c->flags & static_cast<std::uint8_t>(mav::IrgsCasterFlags::kResidualValid)) != 0;
+      if (residual && std::isfinite(c->residual_sum) && c->residual_sum >= 0.0) {
+        encoders.residual_sum_rad = c->residual_sum;
+        encoders.residual_periods = c->residual_periods;
+      }
+      carried_.casters = encoders;
+      ++counters_.caster_frames;
       break;
     }
     case mav::ScaledImu::kId: {

@@ -25,6 +25,12 @@
 // on the byte stream alone, never on the timer, and a replay of the recorded bytes builds the
 // same map as the live session did.
 //
+// IRGS_MOUSE_COUNTS (two floor sensors, cumulative counts; the state is the worst of the
+// readings since the previous frame, an unknown one taken as lifted) and IRGS_CASTER_ENCODERS
+// (six cumulative counts and, when flagged valid, the robot's own J+ residual sum and period
+// count) become TelemetrySample::mouse and ::casters, carried like the encoder ticks: every
+// sample from the first such frame on has the newest.
+//
 // SCALED_IMU (body FRD, mrad/s; docs/protocol.md) gives the gyro: rate = -zgyro (our z is up),
 // temperature from its cdegC extension (0 = not provided: 25 C, GyroReading's default), and
 // saturated when zgyro sits at the int16 limit. The rate is the gyro's raw indicated rate; the
@@ -64,6 +70,8 @@ struct TelemetryAssemblerCounters {
   std::uint64_t unsupported_frames = 0;  // ODOMETRY in a frame we cannot convert
   std::uint64_t restarts = 0;            // robot clock jumped back (reboot)
   std::uint64_t gyro_readings = 0;       // SCALED_IMU frames taken as gyro readings
+  std::uint64_t mouse_frames = 0;        // IRGS_MOUSE_COUNTS frames taken
+  std::uint64_t caster_frames = 0;       // IRGS_CASTER_ENCODERS frames taken
 };
 
 class TelemetryAssembler {
@@ -134,9 +142,9 @@ class TelemetryAssembler {
   bool released_by_hold_ = false;            // the last release was the hold timer's
   bool clock_in_doubt_ = false;              // reset(): the next pose tells if it restarted
   std::optional<TelemetrySample> late_;      // supplementary sample for late readings
-  TelemetrySample carried_;                  // ticks, bumpers, proximity of the newest data
-  std::optional<GyroReading> gyro_;          // the newest SCALED_IMU yaw rate
-  std::int64_t gyro_ms_ = 0;                 // its robot time
+  TelemetrySample carried_;  // ticks, floor sensors, casters, bumpers, proximity: the newest
+  std::optional<GyroReading> gyro_;  // the newest SCALED_IMU yaw rate
+  std::int64_t gyro_ms_ = 0;         // its robot time
   void attachGyro(TelemetrySample& sample) const;
   std::vector<TelemetrySample> ready_;
   TelemetryAssemblerCounters counters_;

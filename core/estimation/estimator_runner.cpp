@@ -327,10 +327,23 @@ void EstimatorRunner::predictFromCasters(const TelemetrySample& sample, double d
   const CasterEncoders before = last_casters_.value_or(*sample.casters);
   const int periods = static_cast<int>(std::clamp(std::ceil(dt / config_.caster_period_s - 1e-9),
                                                   1.0, static_cast<double>(kMaxCasterPeriods)));
+  // The robot's own mean residual per period over the interval, when it reports one: the
+  // re-split counts below have constant rates, so their residual misses the slip and
+  // quantisation of the robot's individual periods.
+  std::optional<double> robot_residual;
+  if (config_.caster_robot_residual && last_casters_) {
+    const std::int64_t n = sample.casters->residual_periods - before.residual_periods;
+    const double sum = sample.casters->residual_sum_rad - before.residual_sum_rad;
+    if (n > 0 && std::isfinite(sum) && sum >= 0.0)
+      robot_residual = sum / static_cast<double>(n);
+  }
+  step_.caster_residual_from_robot = robot_residual.has_value();
   int singular = 0;
   for (int k = 0; k < periods; ++k) {
-    const CasterOdometry odo = casterIntervalOdometry(
-        *config_.caster_geometry, before, *sample.casters, caster_ticks_per_rad_, k, periods);
+    CasterOdometry odo = casterIntervalOdometry(*config_.caster_geometry, before, *sample.casters,
+                                                caster_ticks_per_rad_, k, periods);
+    if (robot_residual)
+      odo.residual_norm = *robot_residual;  // (36) Q = lambda ||e|| with the robot's ||e||
     const CasterPrediction p = ekf_.predictCaster(odo, config_.caster_lambda);
     if (p.status != PredictStatus::kApplied) {
       ++singular;

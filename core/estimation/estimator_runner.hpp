@@ -17,9 +17,14 @@
 //     predicted with the least-squares J+ odometry (33) from the sample's six caster encoders,
 //     with the adaptive process noise Q = caster_lambda ||e|| (36)-(37), in dead-reckoning
 //     periods of caster_period_s [000: 1 ms] (the interval between two samples is split into
-//     equal periods, encoder rates constant in between); updated like kStereoEkf. Its dead
-//     reckoning is the same J+ prediction without updates. The wheel-encoder kinds refuse a
-//     three-caster profile (it has no left/right wheels) and this one refuses any other.
+//     equal periods, encoder rates constant in between); updated like kStereoEkf. When the
+//     samples carry the robot's own per-period residuals (CasterEncoders::residual_periods
+//     grew), each period's ||e|| is the robot's mean over the interval instead of the residual
+//     of the re-split counts, which averages slip and quantisation out at coarse sample rates
+//     (docs/localization.md); otherwise (older recordings, robots that do not report it) the
+//     re-split residual. Its dead reckoning is the same J+ prediction without updates. The
+//     wheel-encoder kinds refuse a three-caster profile (it has no left/right wheels) and this one
+//     refuses any other.
 //
 // Every sample is used once, in order: the encoder increment is the tick difference to the
 // previous sample times the profile's metres per tick (nominal model, like the robot's own
@@ -96,6 +101,9 @@ struct EstimatorRunnerConfig {
   double caster_lambda = 0.005;
   double caster_period_s = 0.001;
   std::optional<CasterDriveGeometry> caster_geometry;
+  // Use the robot's reported J+ residual for Q when the samples carry it (false: always the
+  // residual of the re-split counts, the behaviour before robots reported it).
+  bool caster_robot_residual = true;
 };
 
 // Throws std::invalid_argument for non-finite or non-positive stddevs/periods, no sensors, or
@@ -125,6 +133,7 @@ struct EstimatorStep {
   // kStereoEkfCaster: J+ periods predicted this sample and the sum of their residuals ||e||.
   int caster_periods = 0;
   double caster_residual_sum = 0.0;
+  bool caster_residual_from_robot = false;  // ||e|| was the robot's reported mean residual
   // Error estimate - truth (x, y, wrapped theta) and NEES e' P^-1 e, when truth is known and P
   // is positive definite.
   std::optional<LocState> error;

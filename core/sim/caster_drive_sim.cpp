@@ -128,8 +128,12 @@ void CasterDriveSimulator::period(const BodyTwist& twist, double h, Pose2& odome
   }
   // The robot's own dead reckoning: J+ on this period's count differences.
   const CasterOdometry odo = casterIntervalOdometry(nominal_, before, encoders_, ticks_per_rad_);
-  if (odo.ok)
+  if (odo.ok) {
     odometry = applyIncrement(odometry, {odo.body_delta(0), odo.body_delta(1), odo.body_delta(2)});
+    // What the robot reports of its own J+ (CasterEncoders): the residual of this period.
+    encoders_.residual_sum_rad += odo.residual_norm;
+    ++encoders_.residual_periods;
+  }
 }
 
 }  // namespace irgs

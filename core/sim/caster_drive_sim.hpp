@@ -15,7 +15,9 @@
 //   as cumulative counts
 //   (DriveGeometry::ticksPerWheelRad() per radian, floor as for the wheel encoders);
 // * the robot's own dead reckoning integrates each period's count differences with the
-//   least-squares J+ (33) at the period's mid steering (what the paper's robot does at 1 ms).
+//   least-squares J+ (33) at the period's mid steering (what the paper's robot does at 1 ms),
+//   and its residual ||e|| (35) is summed into the encoders' residual_sum_rad (with
+//   residual_periods), as the robot reports it.
 //
 // Errors come from the profile's drive/three_caster/simulated_errors (see
 // casterErrorsFromProfile) unless SimConfig overrides them.

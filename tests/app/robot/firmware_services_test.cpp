@@ -663,5 +663,40 @@ TEST(FirmwareStreams, DefaultStreamsFitA115200BaudUart) {
               100.0 * per_second / 11520.0);
 }
 
+// The floor-sensor robot (no sonars) and the three-caster robot (three sonars at 25 Hz, no
+// IRGS_ENCODER_TICKS) with their extra streams at the default rates stay inside the same 95 %
+// of a 115200 baud UART.
+TEST(FirmwareStreams, MouseAndCasterRobotStreamsFitA115200BaudUart) {
+  for (const char* name : {"mouse_type20_004.json", "caster3_000.json"}) {
+    SCOPED_TRACE(name);
+    const RobotProfileResult robot =
+        loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/" + name);
+    ASSERT_TRUE(robot.profile.has_value());
+    SimConfig sim;
+    sim.seed = 7;
+    FirmwareCore core(Simulator(room(true), *robot.profile, typicalSimConfig(sim)), {});
+    Gcs gcs(core);
+    gcs.run(3.0, true, std::make_pair<std::int16_t, std::int16_t>(0, 300));
+    std::size_t bytes = 0;
+    std::size_t mouse = 0, casters = 0, ticks = 0;
+    for (const auto& r : gcs.received) {
+      if (r.t_s <= 1.0)
+        continue;
+      bytes += 12u + r.frame.payload_length;
+      mouse += r.frame.message_id == mav::IrgsMouseCounts::kId ? 1u : 0u;
+      casters += r.frame.message_id == mav::IrgsCasterEncoders::kId ? 1u : 0u;
+      ticks += r.frame.message_id == mav::IrgsEncoderTicks::kId ? 1u : 0u;
+    }
+    const bool caster_robot = robot.profile->drive.type == DriveType::kThreeCaster;
+    EXPECT_NEAR(static_cast<double>(caster_robot ? casters : mouse), 40.0, 1.0);  // 20 Hz
+    EXPECT_EQ(caster_robot ? mouse : casters, 0u);
+    EXPECT_EQ(ticks == 0u, caster_robot);
+    const double per_second = static_cast<double>(bytes) / 2.0;
+    EXPECT_LT(per_second, 11520.0 * 0.95) << per_second << " B/s";
+    std::printf("%s streams: %.0f B/s = %.1f %% of 115200 baud\n", name, per_second,
+                100.0 * per_second / 11520.0);
+  }
+}
+
 }  // namespace
 }  // namespace irgs::app

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 #include <tuple>
 #include <vector>
@@ -149,6 +150,71 @@ TEST(MavlinkMessages, DialectMessagesUseTheirPrivateIdRange) {
   ticks.left_ticks = -5;
   ticks.right_ticks = 1LL << 40;
   EXPECT_EQ(IrgsEncoderTicks::unpack(packed(ticks)), ticks);
+}
+
+// The floor-sensor and caster-encoder messages (issue 5): wire layout (largest elements first)
+// and a full encode/decode with values at their type's limits.
+TEST(MavlinkMessages, MouseCountsRoundTripWithTheirLayout) {
+  EXPECT_EQ(IrgsMouseCounts::kId, 48006u);
+  EXPECT_EQ(IrgsMouseCounts::kMinLength, 26);
+  IrgsMouseCounts m;
+  m.time_usec = 0x0102030405060708ULL;
+  m.right_x = -2;
+  m.right_y = std::numeric_limits<std::int32_t>::max();
+  m.left_x = std::numeric_limits<std::int32_t>::min();
+  m.left_y = 31496;  // one metre at 800 cpi
+  m.right_status = static_cast<std::uint8_t>(IrgsMouseStatus::kSaturated);
+  m.left_status = static_cast<std::uint8_t>(IrgsMouseStatus::kLifted);
+  const auto bytes = packed(m);
+  EXPECT_EQ(bytes[0], 0x08);  // time_usec, little-endian
+  EXPECT_EQ(bytes[7], 0x01);
+  EXPECT_EQ(bytes[8], 0xFE);  // right_x = -2
+  EXPECT_EQ(bytes[11], 0xFF);
+  EXPECT_EQ(bytes[24], 1);  // right_status
+  EXPECT_EQ(bytes[25], 2);  // left_status
+  FrameEncoder encoder(1, 1);
+  FrameDecoder decoder;
+  const DecodeResult r = decoder.feed(encoder.encode(m).view());
+  ASSERT_EQ(r.frames.size(), 1u);
+  EXPECT_EQ(r.frames[0].message_id, 48006u);
+  EXPECT_EQ(r.frames[0].as<IrgsMouseCounts>(), m);
+}
+
+TEST(MavlinkMessages, CasterEncodersRoundTripWithTheirLayout) {
+  EXPECT_EQ(IrgsCasterEncoders::kId, 48007u);
+  EXPECT_EQ(IrgsCasterEncoders::kMinLength, 45);
+  IrgsCasterEncoders m;
+  m.time_usec = 123456789;
+  m.residual_sum = 1234.5678901234567;  // double: the cumulative sum keeps its precision
+  m.drive = {100, -200, std::numeric_limits<std::int32_t>::max()};
+  m.steering = {-8482, 0, 8482};   // -pi, 0, pi at 2700 counts/rad
+  m.residual_periods = 3'600'000;  // an hour at 1 ms
+  m.flags = static_cast<std::uint8_t>(IrgsCasterFlags::kResidualValid);
+  const auto bytes = packed(m);
+  double sum = 0.0;
+  std::memcpy(&sum, bytes.data() + 8, sizeof sum);  // the two 8-byte fields first
+  EXPECT_EQ(sum, m.residual_sum);
+  std::int32_t drive0 = 0;
+  std::memcpy(&drive0, bytes.data() + 16, sizeof drive0);  // then the int32 arrays in XML order
+  EXPECT_EQ(drive0, 100);
+  std::int32_t steering2 = 0;
+  std::memcpy(&steering2, bytes.data() + 16 + 5 * 4, sizeof steering2);
+  EXPECT_EQ(steering2, 8482);
+  EXPECT_EQ(bytes[44], 1);  // flags, the only 1-byte field, last
+  FrameEncoder encoder(1, 1);
+  FrameDecoder decoder;
+  const DecodeResult r = decoder.feed(encoder.encode(m).view());
+  ASSERT_EQ(r.frames.size(), 1u);
+  EXPECT_EQ(r.frames[0].as<IrgsCasterEncoders>(), m);
+  // A frame without the residual (flags 0, sum and periods 0) is trimmed, and still decodes.
+  IrgsCasterEncoders bare = m;
+  bare.residual_sum = 0.0;
+  bare.residual_periods = 0;
+  bare.flags = 0;
+  const DecodeResult b = decoder.feed(encoder.encode(bare).view());
+  ASSERT_EQ(b.frames.size(), 1u);
+  EXPECT_LT(b.frames[0].payload_length, IrgsCasterEncoders::kMinLength);
+  EXPECT_EQ(b.frames[0].as<IrgsCasterEncoders>(), bare);
 }
 
 }  // namespace

@@ -21,6 +21,14 @@ inline RobotProfile thesisRobot() {
   return *loaded.profile;
 }
 
+// A bundled robot profile by file name (resources/robots/NAME).
+inline RobotProfile robotProfile(const std::string& name) {
+  auto loaded = loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/" + name);
+  if (!loaded.profile)
+    throw std::runtime_error("cannot load the robot profile " + name);
+  return *loaded.profile;
+}
+
 inline WorldMap defaultMap() {
   auto loaded = loadAnyMap(std::string(IRGS_SOURCE_DIR) + "/resources/maps/default.json");
   if (!loaded.map)

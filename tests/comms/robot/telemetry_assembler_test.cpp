@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <vector>
@@ -449,6 +451,228 @@ TEST(TelemetryAssembler, TheFirmwaresGyroArrivesOnTheSamplesAndFollowsTheTurn) {
     runner.feed(s);
   EXPECT_GT(runner.metrics().readings, 50);
   EXPECT_GT(runner.metrics().accepted, 50);
+}
+
+// IRGS_MOUSE_COUNTS and IRGS_CASTER_ENCODERS ride on every sample from the first frame on, like
+// the encoder ticks; the floor-sensor state and the residual are taken as the frames say.
+TEST(TelemetryAssembler, FloorSensorCountsAndCasterEncodersAreCarriedToEverySample) {
+  TelemetryAssembler assembler(testing::thesisRobot(), {.release_on_pose = true});
+  assembler.onFrame(lpn(50, 0.0f, 0.0f), 0.0);
+  assembler.onFrame(att(50, 0.0f), 0.0);  // before any such frame: neither
+  mav::IrgsMouseCounts mouse;
+  mouse.time_usec = 100'000;
+  mouse.right_x = 1200;
+  mouse.right_y = -35;
+  mouse.left_x = 1190;
+  mouse.left_y = 7;
+  mouse.right_status = static_cast<std::uint8_t>(mav::IrgsMouseStatus::kSaturated);
+  mouse.left_status = static_cast<std::uint8_t>(mav::IrgsMouseStatus::kTracking);
+  assembler.onFrame(frameOf(mouse), 0.0);
+  mav::IrgsCasterEncoders casters;
+  casters.time_usec = 100'000;
+  casters.drive = {27000, -13500, 5};
+  casters.steering = {0, 8482, -4241};
+  casters.residual_sum = 0.0725;
+  casters.residual_periods = 100;
+  casters.flags = static_cast<std::uint8_t>(mav::IrgsCasterFlags::kResidualValid);
+  assembler.onFrame(frameOf(casters), 0.0);
+  for (std::uint32_t ms : {100u, 150u}) {
+    assembler.onFrame(lpn(ms, 0.0f, 0.0f), 0.0);
+    assembler.onFrame(att(ms, 0.0f), 0.0);
+  }
+  mouse.time_usec = 200'000;
+  mouse.left_status = 7;  // not an IRGS_MOUSE_STATUS: not trusted
+  assembler.onFrame(frameOf(mouse), 0.0);
+  casters.time_usec = 200'000;
+  casters.residual_sum = 123.0;
+  casters.residual_periods = 5;
+  casters.flags = 0;  // the residual is not valid: not taken
+  assembler.onFrame(frameOf(casters), 0.0);
+  assembler.onFrame(lpn(200, 0.0f, 0.0f), 0.0);
+  assembler.onFrame(att(200, 0.0f), 0.0);
+  const auto samples = assembler.takeReady();
+  ASSERT_EQ(samples.size(), 4u);
+  EXPECT_FALSE(samples[0].mouse.has_value());
+  EXPECT_FALSE(samples[0].casters.has_value());
+  for (std::size_t i : {1u, 2u}) {
+    ASSERT_TRUE(samples[i].mouse.has_value());
+    EXPECT_EQ(samples[i].mouse->right.dx, 1200);
+    EXPECT_EQ(samples[i].mouse->right.dy, -35);
+    EXPECT_EQ(samples[i].mouse->left.dx, 1190);
+    EXPECT_EQ(samples[i].mouse->left.dy, 7);
+    EXPECT_EQ(samples[i].mouse->right.status, MouseStatus::kSaturated);
+    EXPECT_EQ(samples[i].mouse->left.status, MouseStatus::kTracking);
+    ASSERT_TRUE(samples[i].casters.has_value());
+    const CasterEncoders& c = *samples[i].casters;
+    EXPECT_EQ(c.drive_ticks, (std::array<std::int64_t, 3>{27000, -13500, 5}));
+    EXPECT_EQ(c.steering_ticks, (std::array<std::int64_t, 3>{0, 8482, -4241}));
+    EXPECT_DOUBLE_EQ(c.residual_sum_rad, 0.0725);
+    EXPECT_EQ(c.residual_periods, 100);
+  }
+  ASSERT_TRUE(samples[3].mouse && samples[3].casters);
+  EXPECT_EQ(samples[3].mouse->left.status, MouseStatus::kLifted);
+  EXPECT_EQ(samples[3].casters->residual_periods, 0);
+  EXPECT_EQ(samples[3].casters->residual_sum_rad, 0.0);
+  EXPECT_EQ(assembler.counters().mouse_frames, 2u);
+  EXPECT_EQ(assembler.counters().caster_frames, 2u);
+}
+
+// Runs `fw` for `seconds` with a ground station driving it (x, r as MANUAL_CONTROL), feeding
+// every frame to `assembler`; returns the simulator's true pose at each step by boot time in ms.
+std::map<std::int64_t, Pose2> runWithTruth(app::FirmwareCore& fw, TelemetryAssembler& assembler,
+                                           double seconds, std::int16_t x, std::int16_t r) {
+  std::map<std::int64_t, Pose2> truth;
+  mav::FrameDecoder decoder;
+  std::vector<mav::Frame> frames;
+  mav::Heartbeat hb;
+  hb.type = static_cast<std::uint8_t>(mav::MavType::kGcs);
+  mav::ManualControl mc;
+  mc.x = x;
+  mc.r = r;
+  const double dt = fw.simulator().config().dt_s;
+  const int steps = static_cast<int>(std::lround(seconds / dt));
+  for (int i = 0; i < steps; ++i) {
+    const double t = fw.simulator().time_s();
+    if (i % 50 == 0)
+      fw.receive(frameOf(hb, 255, 190), t);
+    if (i % 10 == 0)
+      fw.receive(frameOf(mc, 255, 190), t);
+    fw.advance(t + dt);
+    truth[std::llround(fw.simulator().time_s() * 1000.0)] = fw.simulator().truePose();
+    frames.clear();
+    decoder.feed(fw.takeOutput(), frames);
+    for (const auto& f : frames)
+      assembler.onFrame(f, fw.simulator().time_s());
+    assembler.tick(fw.simulator().time_s());
+  }
+  return truth;
+}
+
+// The Type (2,0) robot of paper 004 behind the firmware: its two floor sensors' counts reach the
+// samples at the pose rate, and the host's optical-mouse odometry on them follows the robot's
+// true motion (error-free sensors: quantisation only), as it does in-process.
+TEST(TelemetryAssembler, TheFirmwaresFloorSensorCountsDriveTheHostsMouseOdometry) {
+  const RobotProfile robot = testing::robotProfile("mouse_type20_004.json");
+  SimConfig sim;
+  sim.seed = 3;
+  sim = idealSimConfig(sim);
+  app::FirmwareCore fw(Simulator(testing::defaultMap(), robot, sim), {});
+  ASSERT_EQ(fw.messagePeriod(mav::IrgsMouseCounts::kId).value_or(0.0), 0.05);
+  EXPECT_EQ(fw.messagePeriod(mav::IrgsCasterEncoders::kId).value_or(1.0), 0.0);
+  TelemetryAssembler assembler(robot);
+  const auto truth = runWithTruth(fw, assembler, 6.0, 600, -250);  // an arc to the left
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 100u);
+  std::size_t with_mouse = 0;
+  for (const auto& s : samples)
+    with_mouse += s.mouse.has_value() ? 1u : 0u;
+  EXPECT_GE(with_mouse, samples.size() - 1);  // all but the very first sample
+  EXPECT_GE(assembler.counters().mouse_frames, 110u);
+
+  EstimatorRunnerConfig config;
+  config.kind = EstimatorKind::kMouseOdometry;
+  const Pose2 start = truth.begin()->second;
+  EstimatorRunner runner(testing::defaultMap(), robot, start, config);
+  double travelled = 0.0;
+  for (const auto& s : samples) {
+    const EstimatorStep& step = runner.feed(s);
+    if (step.mouse_motion)
+      travelled += step.mouse_motion->centre.norm();
+  }
+  EXPECT_GT(travelled, 1.0);
+  EXPECT_EQ(runner.metrics().accepted, runner.metrics().readings);
+  const auto it = truth.find(std::llround(samples.back().time_s * 1000.0));
+  ASSERT_NE(it, truth.end());
+  const Pose2 estimate = runner.lastStep().estimate;
+  std::printf("mouse over the firmware's frames: %.3f m travelled, final error %.2f mm, %.3f deg\n",
+              travelled, 1e3 * (estimate.position() - it->second.position()).norm(),
+              radToDeg(std::abs(wrapAngle(estimate.theta - it->second.theta))));
+  EXPECT_LT((estimate.position() - it->second.position()).norm(), 0.003)
+      << estimate.x << " " << estimate.y << " vs " << it->second.x << " " << it->second.y;
+  EXPECT_LT(std::abs(wrapAngle(estimate.theta - it->second.theta)), degToRad(0.2));
+  EXPECT_GT(std::abs(wrapAngle(it->second.theta - start.theta)), 0.5);  // it really turned
+}
+
+// A floor gap beyond the sensors' lift-off height: the firmware reports them lifted, and the
+// host's mouse odometry skips those intervals instead of taking the missing counts for rest.
+TEST(TelemetryAssembler, LiftedFloorSensorsReachTheHostAsLifted) {
+  const RobotProfile robot = testing::robotProfile("mouse_type20_004.json");
+  SimConfig sim;
+  sim = idealSimConfig(sim);
+  sim.mouse_floor_gap_m = 0.005;  // the rig's max_lift_m is 2 mm
+  app::FirmwareCore fw(Simulator(testing::defaultMap(), robot, sim), {});
+  TelemetryAssembler assembler(robot);
+  runWithTruth(fw, assembler, 2.0, 500, 0);
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 30u);
+  EstimatorRunnerConfig config;
+  config.kind = EstimatorKind::kMouseOdometry;
+  EstimatorRunner runner(testing::defaultMap(), robot, samples.front().odometry_pose, config);
+  for (const auto& s : samples) {
+    ASSERT_TRUE(s.mouse.has_value());
+    EXPECT_EQ(s.mouse->right.status, MouseStatus::kLifted);
+    EXPECT_EQ(s.mouse->left.status, MouseStatus::kLifted);
+    runner.feed(s);
+  }
+  EXPECT_GT(runner.metrics().readings, 30);
+  EXPECT_EQ(runner.metrics().accepted, 0);
+  EXPECT_GT(
+      (samples.back().odometry_pose.position() - samples.front().odometry_pose.position()).norm(),
+      0.3);  // the wheels moved it
+  EXPECT_LT(
+      (runner.lastStep().estimate.position() - samples.front().odometry_pose.position()).norm(),
+      1e-9);  // the mice saw nothing
+}
+
+// Paper 000's three-caster robot behind the firmware: the six encoders and the robot's own J+
+// residual reach the samples (no IRGS_ENCODER_TICKS: it has no left/right wheels), and the
+// host's three-caster EKF, fed only the 20 Hz samples, predicts with the robot's residual and
+// its dead reckoning stays on the robot's own 1 ms J+ odometry.
+TEST(TelemetryAssembler, TheFirmwaresCasterEncodersAndResidualReachTheHostsCasterEkf) {
+  const RobotProfile robot = testing::robotProfile("caster3_000.json");
+  SimConfig sim;
+  sim.seed = 3;
+  sim = typicalSimConfig(sim);  // the profile's caster errors: slip, backlash, radius spread
+  app::FirmwareCore fw(Simulator(testing::defaultMap(), robot, sim), {});
+  ASSERT_EQ(fw.messagePeriod(mav::IrgsCasterEncoders::kId).value_or(0.0), 0.05);
+  EXPECT_EQ(fw.messagePeriod(mav::IrgsEncoderTicks::kId).value_or(1.0), 0.0);
+  EXPECT_EQ(fw.messagePeriod(mav::IrgsMouseCounts::kId).value_or(1.0), 0.0);
+  TelemetryAssembler assembler(robot);
+  runWithTruth(fw, assembler, 6.0, 700, 200);  // an arc to the right
+  const auto samples = assembler.takeReady();
+  ASSERT_GE(samples.size(), 100u);
+  ASSERT_TRUE(samples.back().casters.has_value());
+  // The robot steps its casters in 1 ms periods: 6 s of them, each with its residual.
+  EXPECT_NEAR(static_cast<double>(samples.back().casters->residual_periods), 6000.0, 60.0);
+  EXPECT_GT(samples.back().casters->residual_sum_rad, 0.0);
+  EXPECT_EQ(samples.back().left_ticks, 0);
+
+  EstimatorRunnerConfig config;
+  config.kind = EstimatorKind::kStereoEkfCaster;
+  EstimatorRunner runner(testing::defaultMap(), robot, samples.front().odometry_pose, config);
+  std::size_t from_robot = 0;
+  for (const auto& s : samples) {
+    const EstimatorStep& step = runner.feed(s);
+    from_robot += step.caster_residual_from_robot ? 1u : 0u;
+  }
+  EXPECT_GE(from_robot, samples.size() - 2);
+  const Pose2& robot_odometry = samples.back().odometry_pose;
+  const Pose2& host = runner.lastStep().dead_reckoning;
+  EXPECT_GT((robot_odometry.position() - samples.front().odometry_pose.position()).norm(), 1.0);
+  std::printf(
+      "caster over the firmware's frames: %zu samples, host J+ DR %.2f mm / %.3f deg off "
+      "the robot's, mean residual used %.3e rad (robot's %.3e)\n",
+      samples.size(), 1e3 * (host.position() - robot_odometry.position()).norm(),
+      radToDeg(std::abs(wrapAngle(host.theta - robot_odometry.theta))),
+      runner.metrics().mean_caster_residual_rad,
+      samples.back().casters->residual_sum_rad /
+          static_cast<double>(samples.back().casters->residual_periods));
+  EXPECT_LT((host.position() - robot_odometry.position()).norm(), 0.005);
+  EXPECT_LT(std::abs(wrapAngle(host.theta - robot_odometry.theta)), degToRad(0.2));
+  // The robot's mean residual per period, not the one of the re-split 50 ms counts.
+  const double robot_mean = samples.back().casters->residual_sum_rad /
+                            static_cast<double>(samples.back().casters->residual_periods);
+  EXPECT_NEAR(runner.metrics().mean_caster_residual_rad, robot_mean, 0.1 * robot_mean);
 }
 
 TEST(TelemetryAssembler, ARobotRestartStartsTheTimeBaseOver) {

@@ -44,6 +44,9 @@ CasterDriveGeometry loadGeometry() {
 struct CasterRun {
   double lambda = 0.005;  // [000]
   std::uint64_t seed = 1;
+  double dt_s = kDt;  // simulator step = the estimator's sample interval
+  // Q from the robot's own per-period residual (the samples carry it) or the re-split one.
+  bool robot_residual = true;
 };
 
 struct CasterRunResult {
@@ -59,7 +62,7 @@ CasterRunResult run(const CasterRun& cfg) {
   const WorldMap& map = *loaded.map;
   const RobotProfile robot = casterRobot();
   SimConfig sim_config;  // caster errors: the profile's
-  sim_config.dt_s = kDt;
+  sim_config.dt_s = cfg.dt_s;
   sim_config.seed = cfg.seed;
   const Pose2 start{2.0, 0.775, 0.0};
   Simulator sim(map, robot, sim_config);
@@ -67,6 +70,7 @@ CasterRunResult run(const CasterRun& cfg) {
   EstimatorRunnerConfig config;
   config.kind = EstimatorKind::kStereoEkfCaster;
   config.caster_lambda = cfg.lambda;
+  config.caster_robot_residual = cfg.robot_residual;
   config.initial_position_stddev_m = 0.01;
   config.initial_heading_stddev_rad = degToRad(1.0);
   config.seed = cfg.seed;
@@ -103,10 +107,12 @@ CasterRunResult run(const CasterRun& cfg) {
 void print(const CasterRun& c, const CasterRunResult& r) {
   const EstimatorMetrics& m = r.metrics;
   std::printf(
-      "caster lambda %.3g seed %llu: %.1f m; EKF RMS %.3f m max %.3f m final %.3f m heading "
+      "caster lambda %.3g seed %llu dt %.0f ms %s residual: %.1f m; EKF RMS %.3f m max %.3f m "
+      "final %.3f m heading "
       "%.2f deg; DR final %.2f m (max %.2f m); %lld/%lld readings used; NEES within 95 %% "
       "bound %.1f %% of %lld (mean %.2f); mean ||e|| %.2e rad\n",
-      c.lambda, static_cast<unsigned long long>(c.seed), m.distance_m, m.rms_position_error_m,
+      c.lambda, static_cast<unsigned long long>(c.seed), c.dt_s * 1e3,
+      c.robot_residual ? "robot" : "re-split", m.distance_m, m.rms_position_error_m,
       m.max_position_error_m, m.final_position_error_m, radToDeg(m.final_heading_error_rad),
       m.dr_final_position_error_m, r.max_dr_error_m, static_cast<long long>(m.accepted),
       static_cast<long long>(m.readings), 100.0 * m.nees_within_95,
@@ -172,6 +178,36 @@ TEST(CasterCorridorRun, TheAdaptiveNoiseScaleDecidesConsistencyNotBoundedness) {
       EXPECT_GE(nees, 0.9);  // issue-5 acceptance band
     }
   }
+}
+
+// Q = lambda ||e|| is the paper's law for its 1 ms period. An estimator that sees 10 ms samples
+// (the GUI's simulator step) re-splits each interval into ten 1 ms periods at constant rates,
+// which averages the slip and quantisation out: its ||e|| is about 5x smaller and lambda = 0.005
+// becomes much more overconfident. The robot reports the sum of its own per-period residuals in
+// the caster encoder record; with it the 10 ms estimator is as consistent as the 1 ms one.
+TEST(CasterCorridorRun, AtTenMillisecondSamplesTheRobotsOwnResidualKeepsTheOneMillisecondNees) {
+  CasterRun fine;  // 1 ms: the robot's and the re-split residual are the same
+  const CasterRunResult at_1ms = run(fine);
+  print(fine, at_1ms);
+  CasterRun coarse;
+  coarse.dt_s = 0.01;
+  const CasterRunResult robot = run(coarse);
+  print(coarse, robot);
+  coarse.robot_residual = false;  // the behaviour without the robot's report (old recordings)
+  const CasterRunResult resplit = run(coarse);
+  print(coarse, resplit);
+  ASSERT_TRUE(at_1ms.finished && robot.finished && resplit.finished);
+  const double nees_1ms = at_1ms.metrics.nees_within_95;
+  EXPECT_NEAR(robot.metrics.nees_within_95, nees_1ms, 0.05);
+  EXPECT_LT(resplit.metrics.nees_within_95, nees_1ms - 0.2);
+  // The residual the 10 ms estimator used is the robot's 1 ms one, not the averaged one.
+  EXPECT_NEAR(robot.metrics.mean_caster_residual_rad, at_1ms.metrics.mean_caster_residual_rad,
+              0.05 * at_1ms.metrics.mean_caster_residual_rad);
+  EXPECT_LT(resplit.metrics.mean_caster_residual_rad,
+            0.5 * at_1ms.metrics.mean_caster_residual_rad);
+  // The error itself hardly depends on it: the sonar updates dominate.
+  EXPECT_LT(robot.metrics.max_position_error_m, 0.1);
+  EXPECT_LT(resplit.metrics.max_position_error_m, 0.1);
 }
 
 }  // namespace
