@@ -48,13 +48,6 @@ double periodFromRate(double hz) {
   return hz > 0.0 ? 1.0 / hz : 0.0;
 }
 
-// Counts are cumulative since boot; on the wire they are int32 (68 km of travel at 800 cpi,
-// 2.1e9 counts of a caster encoder), clamped rather than wrapped beyond that.
-std::int32_t wireCounts(std::int64_t counts) {
-  return static_cast<std::int32_t>(std::clamp<std::int64_t>(
-      counts, std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()));
-}
-
 }  // namespace
 
 FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base) {
@@ -1023,36 +1016,14 @@ void FirmwareCore::sendEncoderTicks(const TelemetrySample& sample) {
 void FirmwareCore::sendMouseCounts(const TelemetrySample& sample) {
   if (!sample.mouse)
     return;
-  mav::IrgsMouseCounts m;
-  m.time_usec = toBootUs(sample.time_s);
-  m.right_x = wireCounts(sample.mouse->right.dx);
-  m.right_y = wireCounts(sample.mouse->right.dy);
-  m.left_x = wireCounts(sample.mouse->left.dx);
-  m.left_y = wireCounts(sample.mouse->left.dy);
-  // MouseStatus and IRGS_MOUSE_STATUS share their values (tracking 0, saturated 1, lifted 2).
-  m.right_status = static_cast<std::uint8_t>(mouse_worst_right_);
-  m.left_status = static_cast<std::uint8_t>(mouse_worst_left_);
+  send(comms::mouseCountsMessage(sample.time_s, *sample.mouse, mouse_worst_right_,
+                                 mouse_worst_left_));
   mouse_worst_right_ = mouse_worst_left_ = MouseStatus::kTracking;
-  send(m);
 }
 
 void FirmwareCore::sendCasterEncoders(const TelemetrySample& sample) {
-  if (!sample.casters)
-    return;
-  const CasterEncoders& c = *sample.casters;
-  mav::IrgsCasterEncoders m;
-  m.time_usec = toBootUs(sample.time_s);
-  for (std::size_t i = 0; i < 3; ++i) {
-    m.drive[i] = wireCounts(c.drive_ticks[i]);
-    m.steering[i] = wireCounts(c.steering_ticks[i]);
-  }
-  if (c.residual_periods > 0) {
-    m.residual_sum = c.residual_sum_rad;
-    m.residual_periods = static_cast<std::uint32_t>(
-        std::min<std::int64_t>(c.residual_periods, std::numeric_limits<std::uint32_t>::max()));
-    m.flags = static_cast<std::uint8_t>(mav::IrgsCasterFlags::kResidualValid);
-  }
-  send(m);
+  if (sample.casters)
+    send(comms::casterEncodersMessage(sample.time_s, *sample.casters));
 }
 
 void FirmwareCore::sendOdometryMessage(const TelemetrySample& sample) {

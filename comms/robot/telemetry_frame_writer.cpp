@@ -62,6 +62,12 @@ void TelemetryFrameWriter::write(const TelemetrySample& sample, std::vector<std:
   append(pose2dMessage(sample), out);
   if (!sample.casters)  // a three-caster robot has no left/right wheels
     append(encoderTicksMessage(sample), out);
+  else
+    append(casterEncodersMessage(t, *sample.casters), out);
+  if (sample.mouse)  // one report per reading: its own state is the worst since the last
+    append(
+        mouseCountsMessage(t, *sample.mouse, sample.mouse->right.status, sample.mouse->left.status),
+        out);
 
   if (!sample.sonar.empty()) {
     constexpr std::size_t kScanCapacity = mav::IrgsSonarScan{}.range.size();

@@ -1,7 +1,8 @@
 #pragma once
 // Turns a robot's telemetry samples into the MAVLink frames a robot running the IRGS firmware's
 // compact streams would send for them (docs/protocol.md): a HEARTBEAT once a second of robot
-// time, and per sample IRGS_POSE_2D, IRGS_ENCODER_TICKS, IRGS_SONAR_SCAN when sonars fired
+// time, and per sample IRGS_POSE_2D, IRGS_ENCODER_TICKS (IRGS_CASTER_ENCODERS for a three-caster
+// robot), IRGS_MOUSE_COUNTS when it has floor sensors, IRGS_SONAR_SCAN when sonars fired
 // (DISTANCE_SENSOR for robots with more sonars than the scan holds), IRGS_CONTACT when it
 // changed or every 0.1 s, SCALED_IMU when the sample has a gyro. TelemetryAssembler decodes
 // them back into the same samples (the pose in float, sonar ranges in mm, the gyro in mrad/s).

@@ -26,6 +26,41 @@ std::uint16_t toMillimetres(double metres) {
   return static_cast<std::uint16_t>(std::clamp(std::lround(metres * 1000.0), 0L, 65534L));
 }
 
+std::int32_t wireCounts(std::int64_t counts) {
+  return static_cast<std::int32_t>(std::clamp<std::int64_t>(
+      counts, std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()));
+}
+
+mav::IrgsMouseCounts mouseCountsMessage(double time_s, const MouseReading& mouse,
+                                        MouseStatus right_status, MouseStatus left_status) {
+  mav::IrgsMouseCounts m;
+  m.time_usec = bootUs(time_s);
+  m.right_x = wireCounts(mouse.right.dx);
+  m.right_y = wireCounts(mouse.right.dy);
+  m.left_x = wireCounts(mouse.left.dx);
+  m.left_y = wireCounts(mouse.left.dy);
+  // MouseStatus and IRGS_MOUSE_STATUS share their values (tracking 0, saturated 1, lifted 2).
+  m.right_status = static_cast<std::uint8_t>(right_status);
+  m.left_status = static_cast<std::uint8_t>(left_status);
+  return m;
+}
+
+mav::IrgsCasterEncoders casterEncodersMessage(double time_s, const CasterEncoders& c) {
+  mav::IrgsCasterEncoders m;
+  m.time_usec = bootUs(time_s);
+  for (std::size_t i = 0; i < 3; ++i) {
+    m.drive[i] = wireCounts(c.drive_ticks[i]);
+    m.steering[i] = wireCounts(c.steering_ticks[i]);
+  }
+  if (c.residual_periods > 0) {
+    m.residual_sum = c.residual_sum_rad;
+    m.residual_periods = static_cast<std::uint32_t>(
+        std::min<std::int64_t>(c.residual_periods, std::numeric_limits<std::uint32_t>::max()));
+    m.flags = static_cast<std::uint8_t>(mav::IrgsCasterFlags::kResidualValid);
+  }
+  return m;
+}
+
 mav::IrgsPose2d pose2dMessage(const TelemetrySample& sample) {
   const Pose2& p = sample.odometry_pose;
   mav::IrgsPose2d pose;

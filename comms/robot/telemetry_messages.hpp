@@ -1,7 +1,8 @@
 #pragma once
 // A robot's telemetry sample as the IRGS dialect's messages, the encoding the virtual robot
 // firmware (app/robot) streams and TelemetryAssembler decodes (docs/protocol.md): pose in our
-// frame (IRGS_POSE_2D), cumulative encoder ticks, contacts, the sonar scan. Pure conversions;
+// frame (IRGS_POSE_2D), cumulative encoder, floor-sensor and caster counts, contacts, the sonar
+// scan, the gyro. Pure conversions;
 // which message goes out when is the sender's business.
 
 #include <cstdint>
@@ -22,6 +23,15 @@ std::uint16_t toMillimetres(double metres);
 
 mavlink::IrgsPose2d pose2dMessage(const TelemetrySample& sample);
 mavlink::IrgsEncoderTicks encoderTicksMessage(const TelemetrySample& sample);
+// Cumulative counts as the messages' int32, clamped rather than wrapped beyond it (68 km of
+// travel at 800 cpi, 2.1e9 counts of a caster encoder).
+std::int32_t wireCounts(std::int64_t counts);
+// Both floor sensors' cumulative counts, each with the state given (a sender reporting less
+// often than it reads passes the worst state since its previous report).
+mavlink::IrgsMouseCounts mouseCountsMessage(double time_s, const MouseReading& mouse,
+                                            MouseStatus right_status, MouseStatus left_status);
+// The six caster counts and, when the robot counted any, its own J+ residual sum.
+mavlink::IrgsCasterEncoders casterEncodersMessage(double time_s, const CasterEncoders& casters);
 // Bumper bits and IR proximity (UINT16_MAX where the sensor sees nothing within its range).
 mavlink::IrgsContact contactMessage(const TelemetrySample& sample, const RobotProfile& profile);
 // The latest reading of each sonar (index = sensor), `fired` = those fresh since the last scan,

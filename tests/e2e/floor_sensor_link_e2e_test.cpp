@@ -80,7 +80,9 @@ class FloorSensorLinkEndToEnd : public ::testing::Test {
     }
     ADD_FAILURE() << "timed out after " << timeout_s << " s waiting for " << what
                   << "; last status: link=" << last["link"] << " samples=" << last["samples"]
-                  << " loc=" << last["loc"] << " loc_steps=" << last["loc_steps"];
+                  << " loc=" << last["loc"] << " loc_steps=" << last["loc_steps"]
+                  << " v=" << last["v"] << " w=" << last["w"] << " cmd_v=" << last["cmd_v"]
+                  << " cmd_w=" << last["cmd_w"];
     return {};
   }
 
@@ -94,11 +96,18 @@ class FloorSensorLinkEndToEnd : public ::testing::Test {
     const auto until = Clock::now() + std::chrono::milliseconds(static_cast<int>(drive_s * 1000));
     waitFor([&](const Fields&) { return Clock::now() >= until; }, drive_s + 10.0, "driving");
     gui_->writeLine("stop");
+    // At rest = the reported pose no longer changes. (Not w ~ 0: at rest the three-caster
+    // robot's measured w jitters by a few mrad/s with the steering encoders' backlash.)
     int still = 0;
+    Fields previous;
     return waitFor(
         [&](const Fields& f) {
-          still =
-              (std::abs(number(f, "v")) < 1e-3 && std::abs(number(f, "w")) < 1e-3) ? still + 1 : 0;
+          const bool same_pose = !previous.empty() &&
+                                 std::abs(number(f, "x") - number(previous, "x")) < 5e-4 &&
+                                 std::abs(number(f, "y") - number(previous, "y")) < 5e-4 &&
+                                 std::abs(number(f, "theta") - number(previous, "theta")) < 1e-3;
+          previous = f;
+          still = same_pose && std::abs(number(f, "v")) < 1e-3 ? still + 1 : 0;
           return still >= 5;  // a second at rest: the estimator has the last motion
         },
         20.0, "the robot to stop");

@@ -24,13 +24,14 @@ namespace mav = mavlink;
 
 // Drives the thesis robot around the default map for `seconds`, turning now and then, and
 // returns every sample (100 Hz, sonar, gyro, IR proximity, bumpers when it touches a wall).
-std::vector<TelemetrySample> simulatedSamples(double seconds, std::uint64_t seed) {
+std::vector<TelemetrySample> simulatedSamples(double seconds, std::uint64_t seed,
+                                              const RobotProfile& robot = testing::thesisRobot()) {
   SimConfig config;
   config.seed = seed;
   config = typicalSimConfig(config);
   config.gyro = autogyroErrorModel();  // an AUTOGYRO-level gyro, as the GUI's simulator has
   config.gyro.enabled = true;
-  Simulator sim(testing::defaultMap(), testing::thesisRobot(), config);
+  Simulator sim(testing::defaultMap(), robot, config);
   std::vector<TelemetrySample> samples;
   const int steps = static_cast<int>(std::lround(seconds / sim.config().dt_s));
   for (int i = 0; i < steps; ++i) {
@@ -48,9 +49,10 @@ struct Decoded {
   std::size_t bytes = 0;
 };
 
-Decoded writeAndDecode(const std::vector<TelemetrySample>& samples) {
-  TelemetryFrameWriter writer(testing::thesisRobot());
-  TelemetryAssembler assembler(testing::thesisRobot());
+Decoded writeAndDecode(const std::vector<TelemetrySample>& samples,
+                       const RobotProfile& robot = testing::thesisRobot()) {
+  TelemetryFrameWriter writer(robot);
+  TelemetryAssembler assembler(robot);
   mav::FrameDecoder decoder;
   Decoded out;
   std::vector<mav::Frame> frames;
@@ -120,6 +122,39 @@ TEST(TelemetryFrameWriter, TheAssemblerGetsBackEverySampleWithinTheMessagesResol
   EXPECT_GT(readings, 500u);
   EXPECT_GT(echoes, 100u);
   EXPECT_EQ(gyro, live.size());
+}
+
+// The floor sensors of paper 004's robot and the six caster encoders of paper 000's, with the
+// robot's own J+ residual: exact (counts are integers, the residual sum a double).
+TEST(TelemetryFrameWriter, FloorSensorCountsAndCasterEncodersComeBackExactly) {
+  const RobotProfile mouse_robot = testing::robotProfile("mouse_type20_004.json");
+  const std::vector<TelemetrySample> mouse_live = simulatedSamples(5.0, 4, mouse_robot);
+  const Decoded mouse = writeAndDecode(mouse_live, mouse_robot);
+  ASSERT_EQ(mouse.samples.size(), mouse_live.size());
+  for (std::size_t i = 0; i < mouse_live.size(); ++i) {
+    const TelemetrySample& a = mouse_live[i];
+    const TelemetrySample& b = mouse.samples[i];
+    ASSERT_TRUE(a.mouse.has_value()) << i;
+    ASSERT_TRUE(b.mouse.has_value()) << i;
+    EXPECT_EQ(b.mouse->right.dx, a.mouse->right.dx) << i;
+    EXPECT_EQ(b.mouse->right.dy, a.mouse->right.dy) << i;
+    EXPECT_EQ(b.mouse->left.dx, a.mouse->left.dx) << i;
+    EXPECT_EQ(b.mouse->left.dy, a.mouse->left.dy) << i;
+    EXPECT_EQ(b.mouse->right.status, a.mouse->right.status) << i;
+    EXPECT_EQ(b.mouse->left.status, a.mouse->left.status) << i;
+  }
+  EXPECT_NE(mouse_live.back().mouse->right.dx, 0);  // it moved
+
+  const RobotProfile caster_robot = testing::robotProfile("caster3_000.json");
+  const std::vector<TelemetrySample> caster_live = simulatedSamples(5.0, 4, caster_robot);
+  const Decoded caster = writeAndDecode(caster_live, caster_robot);
+  ASSERT_EQ(caster.samples.size(), caster_live.size());
+  for (std::size_t i = 0; i < caster_live.size(); ++i) {
+    ASSERT_TRUE(caster_live[i].casters.has_value()) << i;
+    ASSERT_TRUE(caster.samples[i].casters.has_value()) << i;
+    EXPECT_EQ(*caster.samples[i].casters, *caster_live[i].casters) << i;
+  }
+  EXPECT_GT(caster_live.back().casters->residual_periods, 0);
 }
 
 TEST(TelemetryFrameWriter, ASampleOlderThanTheLastStartsOverWithAHeartbeat) {
