@@ -4,15 +4,25 @@
 
 #include <QApplication>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "app/gui/gamepad_source.hpp"
 #include "app/gui/session_controller.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/sim/simulated_robot.hpp"
 #include "core/world/world_map.hpp"
 
 namespace irgs::gui::test {
+
+// No gamepad, and none to come: for a DriveInputController that only needs its pad.
+class NoGamepad : public GamepadSource {
+ public:
+  std::optional<GamepadState> poll() override { return std::nullopt; }
+  std::string deviceName() const override { return {}; }
+  std::string unavailableReason() const override { return {}; }
+};
 
 // The offscreen platform needs no display; set before the application exists.
 inline QApplication& ensureApp() {

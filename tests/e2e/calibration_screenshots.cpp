@@ -19,6 +19,7 @@
 #include "core/sim/simulated_robot.hpp"
 #include "core/world/map_file.hpp"
 #include "core/world/raster_world.hpp"
+#include "tests/e2e/app_test_support.hpp"
 #include "widgets/calibration/gyro_wizard.hpp"
 #include "widgets/calibration/umbmark_wizard.hpp"
 #include "widgets/editor/editor_panel.hpp"
@@ -28,13 +29,6 @@ using namespace irgs;
 using namespace irgs::gui;
 
 namespace {
-
-class NoGamepad : public GamepadSource {
- public:
-  std::optional<GamepadState> poll() override { return std::nullopt; }
-  std::string deviceName() const override { return {}; }
-  std::string unavailableReason() const override { return {}; }
-};
 
 bool save(QWidget& widget, const QDir& dir, const QString& name) {
   const QString path = dir.filePath(name);
@@ -82,7 +76,7 @@ int main(int argc, char** argv) {
   });
   MainWindow window(session, settings);
   session.loadWorld(*map.map, QStringLiteral("default.json"));
-  DriveInputController input(window.commandPanel(), session, std::make_unique<NoGamepad>());
+  DriveInputController input(window.commandPanel(), session, std::make_unique<test::NoGamepad>());
   window.resize(1500, 950);
   window.show();
   if (!QTest::qWaitForWindowExposed(&window))

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <QAction>
+#include <QApplication>
 #include <QFile>
 #include <QMenu>
 #include <QMenuBar>
@@ -21,6 +22,7 @@
 #include <memory>
 
 #include "app/gui/app_options.hpp"
+#include "app/gui/drive_input_controller.hpp"
 #include "app/gui/link_controller.hpp"
 #include "app/gui/link_ui.hpp"
 #include "app/gui/main_window.hpp"
@@ -156,6 +158,24 @@ TEST_F(RecordingUiTest, ASimulatorSessionIsRecordedAsTheFramesItsSamplesWouldBe)
   ASSERT_TRUE(session_->latestSample());
   EXPECT_NEAR(session_->latestSample()->odometry_pose.x, live.back().odometry_pose.x, 1e-5);
   EXPECT_NEAR(session_->latestSample()->odometry_pose.y, live.back().odometry_pose.y, 1e-5);
+}
+
+TEST_F(RecordingUiTest, AReplayDoesNotForceTheWindowTallerThanALaptopScreen) {
+  // A 1366 x 768 screen less the task bar and the title bar leaves about 700 px. Replaying adds
+  // the replay bar, the link-health panel and, on the Drive tab, the robot behaviours: the tab
+  // scrolls instead of setting the window's minimum height (it was 1090 px).
+  ASSERT_EQ(recording_->startRecording(path("short.irgsrec")), QString());
+  session_->drive(0.2, 0.0);
+  run(1.0);
+  recording_->stopRecording();
+  DriveInputController pad(window_->commandPanel(), *session_, std::make_unique<test::NoGamepad>());
+  ASSERT_EQ(recording_->openReplay(path("short.irgsrec")), QString());
+  window_->controlTabs().setCurrentIndex(0);  // Drive
+  QApplication::processEvents();
+  ASSERT_TRUE(recording_->bar().isVisibleTo(window_.get()));
+  const QSize minimum = window_->minimumSizeHint().expandedTo(window_->minimumSize());
+  EXPECT_LE(minimum.height(), 700);
+  EXPECT_LE(minimum.width(), 1366);
 }
 
 TEST_F(RecordingUiTest, ARecordingWithoutReceivedBytesIsRefusedForReplay) {

@@ -16,6 +16,7 @@
 
 #include "core/geometry/types.hpp"
 #include "widgets/command/drive_icons.hpp"
+#include "widgets/layout/scroll_column.hpp"
 
 namespace irgs::widgets {
 namespace {
@@ -30,7 +31,15 @@ QString linkedAvailableTip() {
 }  // namespace
 
 CommandPanel::CommandPanel(QWidget* parent) : QWidget(parent) {
-  auto* layout = new QVBoxLayout(this);
+  // Linked, with the behaviours and the pad, taller than a laptop screen leaves the side column:
+  // it scrolls (ScrollColumn says why).
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(0, 0, 0, 0);
+  auto* scroll = new ScrollColumn(this);
+  scroll->setObjectName(QStringLiteral("commandScroll"));
+  outer->addWidget(scroll);
+  column_ = &scroll->column();
+  QVBoxLayout* layout = column_;
   layout->setContentsMargins(6, 6, 6, 6);
   layout->setSpacing(8);
   layout->addWidget(buildModeGroup());
@@ -363,8 +372,7 @@ double CommandPanel::simSpeed() const {
 }
 
 void CommandPanel::addSection(QWidget* section) {
-  auto* column = static_cast<QVBoxLayout*>(layout());
-  column->insertWidget(column->count() - 1, section);  // above the closing stretch
+  column_->insertWidget(column_->count() - 1, section);  // above the closing stretch
 }
 
 void CommandPanel::setDriveSpeeds(double linear_mps, double angular_radps) {

@@ -15,6 +15,7 @@ class QDoubleSpinBox;
 class QGroupBox;
 class QRadioButton;
 class QToolButton;
+class QVBoxLayout;
 
 namespace irgs::widgets {
 
@@ -82,6 +83,7 @@ class CommandPanel : public QWidget {
   void emitHeldDrive();
   void updatePauseButton();
 
+  QVBoxLayout* column_ = nullptr;  // the groups, inside the panel's scroll column
   QRadioButton* sim_radio_ = nullptr;
   QRadioButton* link_radio_ = nullptr;
   QButtonGroup* mode_group_ = nullptr;

@@ -15,8 +15,6 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QMessageBox>
-#include <QScrollArea>
-#include <QScrollBar>
 #include <QSignalBlocker>
 #include <QStyle>
 #include <QToolButton>
@@ -30,6 +28,7 @@
 #include "core/world/ros_map.hpp"
 #include "widgets/editor/editor_model.hpp"
 #include "widgets/editor/property_panel.hpp"
+#include "widgets/layout/scroll_column.hpp"
 
 namespace irgs::widgets {
 namespace {
@@ -78,18 +77,13 @@ QToolButton* button(QAction* action, QWidget* parent) {
 EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent)
     : QWidget(parent), model_(model), layer_(layer) {
   setObjectName(QStringLiteral("editorPanel"));
-  // The panel is taller than a laptop screen allows the side column: it scrolls, so that it
-  // does not set the main window's minimum height (a tab widget is as tall as its tallest page).
+  // Taller than a laptop screen leaves the side column: it scrolls (ScrollColumn says why).
   auto* outer = new QVBoxLayout(this);
   outer->setContentsMargins(0, 0, 0, 0);
-  auto* scroll = new QScrollArea(this);
+  auto* scroll = new ScrollColumn(this);
   scroll->setObjectName(QStringLiteral("editorScroll"));
-  scroll->setFrameShape(QFrame::NoFrame);
-  scroll->setWidgetResizable(true);
-  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   outer->addWidget(scroll);
-  content_ = new QWidget(scroll);
-  auto* layout = new QVBoxLayout(content_);
+  QVBoxLayout* layout = &scroll->column();
 
   // Tools.
   auto* tools_box = new QGroupBox(tr("Tools"), this);
@@ -293,23 +287,8 @@ EditorPanel::EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent
   });
   connect(&model_, &EditorModel::issuesChanged, this, &EditorPanel::refreshIssues);
   connect(&model_, &EditorModel::selectionChanged, this, &EditorPanel::updateActions);
-  scroll->setWidget(content_);
-  content_->installEventFilter(this);  // its size changes make the panel's sizeHint change
-  // No horizontal scrolling: the column is as wide as the content needs, beside the scroll bar.
-  scroll->setMinimumWidth(content_->minimumSizeHint().width() +
-                          scroll->verticalScrollBar()->sizeHint().width());
   refreshIssues();
   updateActions();
-}
-
-bool EditorPanel::eventFilter(QObject* watched, QEvent* event) {
-  if (watched == content_ && event->type() == QEvent::LayoutRequest)
-    updateGeometry();
-  return QWidget::eventFilter(watched, event);
-}
-
-QSize EditorPanel::sizeHint() const {
-  return content_->sizeHint() + QSize(style()->pixelMetric(QStyle::PM_ScrollBarExtent), 0);
 }
 
 Vec2 EditorPanel::pasteOffset() const {

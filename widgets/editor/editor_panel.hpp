@@ -27,11 +27,6 @@ class EditorPanel : public QWidget {
  public:
   EditorPanel(EditorModel& model, EditorLayer& layer, QWidget* parent = nullptr);
 
-  // The content's natural size (the panel itself scrolls, so its minimum is small): what the
-  // side column gives the Edit tab when there is room.
-  QSize sizeHint() const override;
-  bool eventFilter(QObject* watched, QEvent* event) override;
-
   QAction* toolAction(EditorTool tool) const { return tools_.at(tool); }
   QAction* undoAction() const { return undo_; }
   QAction* redoAction() const { return redo_; }
@@ -72,7 +67,6 @@ class EditorPanel : public QWidget {
   void issueActivated(double x_m, double y_m);
 
  private:
-  QWidget* content_ = nullptr;  // everything, inside the panel's scroll area
   void updateSnap();
   void refreshIssues();
   void updateActions();
