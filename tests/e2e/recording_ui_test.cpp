@@ -15,6 +15,7 @@
 #include <QMenuBar>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <algorithm>
@@ -170,12 +171,16 @@ TEST_F(RecordingUiTest, AReplayDoesNotForceTheWindowTallerThanALaptopScreen) {
   recording_->stopRecording();
   DriveInputController pad(window_->commandPanel(), *session_, std::make_unique<test::NoGamepad>());
   ASSERT_EQ(recording_->openReplay(path("short.irgsrec")), QString());
-  window_->controlTabs().setCurrentIndex(0);  // Drive
-  QApplication::processEvents();
   ASSERT_TRUE(recording_->bar().isVisibleTo(window_.get()));
-  const QSize minimum = window_->minimumSizeHint().expandedTo(window_->minimumSize());
-  EXPECT_LE(minimum.height(), 700);
-  EXPECT_LE(minimum.width(), 1366);
+  QTabWidget& tabs = window_->controlTabs();
+  ASSERT_GE(tabs.count(), 3);
+  for (int tab = 0; tab < tabs.count(); ++tab) {
+    tabs.setCurrentIndex(tab);
+    QApplication::processEvents();
+    const QSize minimum = window_->minimumSizeHint().expandedTo(window_->minimumSize());
+    EXPECT_LE(minimum.height(), 700) << tabs.tabText(tab).toStdString();
+    EXPECT_LE(minimum.width(), 1366) << tabs.tabText(tab).toStdString();
+  }
 }
 
 TEST_F(RecordingUiTest, ARecordingWithoutReceivedBytesIsRefusedForReplay) {
