@@ -81,11 +81,11 @@ struct ConeRowEstimates {
     free1[i] = last_free;
   }
 
-  // Views `rows` rows of `storage`, grown when needed (kept by the caller between cones, so that
-  // a warm scan allocates nothing).
-  void bind(std::vector<double>& storage, int rows) {
+  // Views `rows` rows of `storage` with room for `capacity` >= rows per array, grown when needed
+  // (kept by the caller between cones, so that a warm scan allocates nothing).
+  void bind(std::vector<double>& storage, int rows, int capacity) {
     count = rows;
-    const auto n = static_cast<std::size_t>(rows);
+    const auto n = static_cast<std::size_t>(capacity);
     if (storage.size() < 4 * n)
       storage.resize(4 * n);
     col0 = storage.data();
@@ -182,10 +182,14 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, double* __rest
 IRGS_SCAN_INLINE void estimateConeRows(const ConeScanSetup& s, std::vector<double>& storage,
                                        ConeRowEstimates& out) {
   using namespace cone_scan_detail;
-  const int n = s.has_cells ? s.row1 - s.row0 + 1 : 0;
-  out.bind(storage, n);
+  const int rows = s.has_cells ? s.row1 - s.row0 + 1 : 0;
+  // The loop runs over a multiple of four rows (the extra ones are computed, never read): GCC
+  // then emits no scalar epilogue, which cost as much per row as four rows of the vector body
+  // (a quarter of the loop's time on 0.5 m cones).
+  const int n = (rows + 3) & ~3;
+  out.bind(storage, rows, n);
   if (!s.fast_edges) {
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < rows; ++i)
       out.col0[i] = kUndecidedRow;
     return;
   }
