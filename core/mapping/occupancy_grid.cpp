@@ -413,6 +413,34 @@ IRGS_ALWAYS_INLINE inline int finalRow(const SonarCone& cone, const ConeScanSetu
   return rows.c0(i);
 }
 
+// Runs the exact scan on the rows the estimates left undecided (a few a cone), before the update
+// loop: that loop then reads every row as final cells, and calls nothing out of line for it.
+void resolveUndecidedRows(const SonarCone& cone, const ConeScanSetup& setup,
+                          ConeRowEstimates& rows) {
+  for (int i = 0; i < rows.count; ++i)
+    finalRow(cone, setup, rows, i);
+}
+
+// The rectangle of a cone's non-empty rows, accumulated in locals of the update loop (extending a
+// CellRect& there stored it to memory every row, and made GCC keep the loop's other values on
+// the stack).
+struct TouchedRows {
+  int first = std::numeric_limits<int>::max(), last = -1;
+  int col0 = std::numeric_limits<int>::max(), col1 = std::numeric_limits<int>::min();
+  IRGS_ALWAYS_INLINE void add(int row, int c0, int c1) {
+    first = std::min(first, row);
+    last = row;
+    col0 = std::min(col0, c0);
+    col1 = std::max(col1, c1);
+  }
+  // The rectangle, empty when no row was added.
+  OccupancyGrid::CellRect rect() const {
+    if (last < first)
+      return {};
+    return {col0, first, col1, last};
+  }
+};
+
 // Extends the cone's touched rectangle by a non-empty row (rows come ascending).
 IRGS_ALWAYS_INLINE inline void touchRow(OccupancyGrid::CellRect& touched, int c0, int c1, int row) {
   if (touched.empty()) {
@@ -474,14 +502,23 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
               _mm256_set1_ps(hi),
               _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
               _mm256_setzero_si256()};
+  resolveUndecidedRows(cone, setup, rows);
+  // The row arrays and bounds in locals: the compiler cannot tell that the tile stores leave
+  // them alone, and would reload them every row.
+  const int count = rows.count, row0 = setup.row0;
+  const double* const col0 = rows.col0;
+  const double* const col1 = rows.col1;
+  const double* const free0 = rows.free0;
+  const double* const free1 = rows.free1;
+  TouchedRows bounds;
   std::uint64_t updates = 0;
-  for (int i = 0; i < rows.count; ++i) {
-    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+  for (int i = 0; i < count; ++i) {
+    const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
     if (c0 > c1)
       continue;
-    const int row = setup.row0 + i;
-    const int f0 = rows.f0(i), f1 = rows.f1(i);
-    touchRow(touched, c0, c1, row);
+    const int row = row0 + i;
+    const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
+    bounds.add(row, c0, c1);
     const int ty = row >> kTileShift;
     const int row_offset = (row & kTileMask) * kTileSize;
     for (int col = c0; col <= c1;) {
@@ -493,6 +530,7 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
     }
     updates += static_cast<std::uint64_t>(c1 - c0 + 1);
   }
+  touched = bounds.rect();
   cell_updates_ += updates;
   alignas(32) std::uint32_t lanes[8];
   _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), u.fresh);
@@ -558,14 +596,23 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
                 _mm512_set1_ps(lo),
                 _mm512_set1_ps(hi),
                 _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)};
+  resolveUndecidedRows(cone, setup, rows);
+  // The row arrays and bounds in locals: the compiler cannot tell that the tile stores leave
+  // them alone, and would reload them every row.
+  const int count = rows.count, row0 = setup.row0;
+  const double* const col0 = rows.col0;
+  const double* const col1 = rows.col1;
+  const double* const free0 = rows.free0;
+  const double* const free1 = rows.free1;
+  TouchedRows bounds;
   std::uint64_t updates = 0;
-  for (int i = 0; i < rows.count; ++i) {
-    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+  for (int i = 0; i < count; ++i) {
+    const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
     if (c0 > c1)
       continue;
-    const int row = setup.row0 + i;
-    const int f0 = rows.f0(i), f1 = rows.f1(i);
-    touchRow(touched, c0, c1, row);
+    const int row = row0 + i;
+    const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
+    bounds.add(row, c0, c1);
     const int ty = row >> kTileShift;
     const int row_offset = (row & kTileMask) * kTileSize;
     for (int col = c0; col <= c1;) {
@@ -577,6 +624,7 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
     }
     updates += static_cast<std::uint64_t>(c1 - c0 + 1);
   }
+  touched = bounds.rect();
   cell_updates_ += updates;
   return u.fresh;
 }
@@ -626,9 +674,9 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
   estimateConeRows(setup, scan_scratch_, rows, simd_);
   if (tile_slots_.empty())
     tile_slots_.assign(static_cast<std::size_t>(kTileSlots), TileSlot{});
-  // Rows the estimates left undecided are scanned exactly on the way. (The previous version
-  // prefetched each row's first and last cache line; on this scan's row order the hardware
-  // prefetchers do better: 7-15 % faster without.)
+  // Rows the estimates left undecided are scanned exactly: all first on the AVX paths, on the
+  // way on the portable one. (The previous version prefetched each row's first and last cache
+  // line; on this scan's row order the hardware prefetchers do better: 7-15 % faster without.)
   CellRect touched;
   const auto free_delta = static_cast<float>(model.free_log_odds);
   const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
