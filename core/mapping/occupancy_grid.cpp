@@ -353,6 +353,31 @@ float* OccupancyGrid::fillTileSlot(int tx, int ty) {
   return slot.tile;
 }
 
+void OccupancyGrid::prefetchConeBox(const ConeScanSetup& s) const {
+  if (!s.has_cells)
+    return;
+  const long lines_per_row = (s.hi >> 4) - (s.lo >> 4) + 1;  // 16 floats a line
+  if (lines_per_row * (s.row1 - s.row0 + 1) > kMaxPrefetchLines)
+    return;
+  for (int ty = s.row0 >> kTileShift; ty <= s.row1 >> kTileShift; ++ty) {
+    const int r0 = std::max(s.row0, ty << kTileShift) & kTileMask;
+    const int r1 = std::min(s.row1, (ty << kTileShift) + kTileMask) & kTileMask;
+    for (int tx = s.lo >> kTileShift; tx <= s.hi >> kTileShift; ++tx) {
+      // Tiles not yet in their slot are skipped: creating them here would allocate tiles the
+      // cone may not touch, and a new tile is in cache anyway.
+      const TileSlot& slot = tile_slots_[static_cast<std::size_t>(
+          ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
+      if (slot.key != tileKey(tx, ty))
+        continue;
+      const int c0 = std::max(s.lo, tx << kTileShift) & kTileMask & ~15;
+      const int c1 = std::min(s.hi, (tx << kTileShift) + kTileMask) & kTileMask;
+      for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; c += 16)
+          __builtin_prefetch(slot.tile + r * kTileSize + c, 0, 2);  // read, into L2
+    }
+  }
+}
+
 void OccupancyGrid::noteTouched(const CellRect& cells) {
   observed_rect_.extend(cells);
   dirty_rect_.extend(cells);
@@ -670,13 +695,16 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
       checkedCone(*this, origin, heading_rad, beam_width_rad, range_m, echo, model);
   const ConeScanSetup setup =
       makeConeScanSetup(cone, resolution_m_, coneCellBounds(cone, resolution_m_));
-  ConeRowEstimates rows;
-  estimateConeRows(setup, scan_scratch_, rows, simd_);
   if (tile_slots_.empty())
     tile_slots_.assign(static_cast<std::size_t>(kTileSlots), TileSlot{});
+  prefetchConeBox(setup);
+  ConeRowEstimates rows;
+  estimateConeRows(setup, scan_scratch_, rows, simd_);
   // Rows the estimates left undecided are scanned exactly: all first on the AVX paths, on the
-  // way on the portable one. (The previous version prefetched each row's first and last cache
-  // line; on this scan's row order the hardware prefetchers do better: 7-15 % faster without.)
+  // way on the portable one. The box prefetch above is issued before the estimates so that the
+  // lines arrive while they are computed (0.5 m cones: 15-25 % faster on a shared machine,
+  // ~0.1 us slower when the rows are in cache already). Prefetching each row's first and last line
+  // as the rows are found, in an older version, lost to the hardware prefetchers (7-15 %).
   CellRect touched;
   const auto free_delta = static_cast<float>(model.free_log_odds);
   const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
