@@ -113,6 +113,21 @@ inline double floorDecided(double x, double lo_edge, double hi_edge, double marg
   return d < 0.0 ? r - 1.0 : r;
 }
 
+// floorDecided without the clamp and the NaN test, for the disc ends (4 of the 6 estimates a
+// row): x = apex column -+ a chord is always finite and within 2^31 of zero (the addressable
+// check keeps |apex| under kMaxCellIndex columns, the chord is at most kMaxConeRadiusCells), so
+// the rounding is exact without them. A disc end beyond the box then gives a column further
+// out than the clamped one did; the caller's max / min with the beam interval (wa >= lo - 1,
+// wb <= hi) gives the same row whenever the row has cells, and an empty one (c0 > c1, free0 >
+// free1) where it had none. Only `decided` can differ, sending such a row to the exact path.
+inline double floorDecidedDisc(double x, double margin, bool& decided) {
+  constexpr double kRound = 6755399441055744.0;  // 1.5 * 2^52
+  const double r = (x + kRound) - kRound;
+  const double d = x - r;  // in [-0.5, 0.5]
+  decided = decided & (std::fabs(d) > margin);
+  return d < 0.0 ? r - 1.0 : r;
+}
+
 inline double maxd(double a, double b) {
   return a > b ? a : b;
 }
@@ -145,8 +160,8 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, double* __rest
     const double kl = floorDecided(apex + dy * left_slope, lo_edge, hi_edge, left_err, decided);
     const double outer_chord = std::sqrt(maxd(outer2 - dy2, 0.0)) * inv_res;
     // First column inside: ceil of the left end, never an integer here.
-    const double o0 = floorDecided(apex - outer_chord, lo_edge, hi_edge, disc_err, decided) + 1.0;
-    const double o1 = floorDecided(apex + outer_chord, lo_edge, hi_edge, disc_err, decided);
+    const double o0 = floorDecidedDisc(apex - outer_chord, disc_err, decided) + 1.0;
+    const double o1 = floorDecidedDisc(apex + outer_chord, disc_err, decided);
     decided = decided & (outer_chord >= 1.0);
     // Right edge: uy > 0 keeps columns <= its crossing, uy < 0 those >= it; the left edge the
     // other way round. Clamped to the box (an estimate may say hi + 1).
@@ -160,9 +175,8 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, double* __rest
       const bool free_row = dy2 < free2;
       bool free_decided = true;
       const double free_chord = std::sqrt(maxd(free2 - dy2, 0.0)) * inv_res;
-      const double f0 =
-          floorDecided(apex - free_chord, lo_edge, hi_edge, disc_err, free_decided) + 1.0;
-      const double f1 = floorDecided(apex + free_chord, lo_edge, hi_edge, disc_err, free_decided);
+      const double f0 = floorDecidedDisc(apex - free_chord, disc_err, free_decided) + 1.0;
+      const double f1 = floorDecidedDisc(apex + free_chord, disc_err, free_decided);
       decided = decided & ((!free_row) | (free_decided & (free_chord >= 1.0)));
       fr0 = free_row ? maxd(c0, f0) : c0;
       fr1 = free_row ? mind(c1, f1) : c0 - 1.0;
