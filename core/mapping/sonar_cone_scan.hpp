@@ -192,15 +192,16 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, double* __rest
 
 // Step 1 over the setup's bounding-box rows, into `out` bound to `storage`. With fast_edges false
 // every row is undecided. Forced inline so that estimateConeRowsAvx2 compiles the same loop for
-// AVX2.
+// AVX2. kRowsPerStep: the rows one vector step of the caller's target computes (a power of two).
+template <int kRowsPerStep = 4>
 IRGS_SCAN_INLINE void estimateConeRows(const ConeScanSetup& s, std::vector<double>& storage,
                                        ConeRowEstimates& out) {
   using namespace cone_scan_detail;
   const int rows = s.has_cells ? s.row1 - s.row0 + 1 : 0;
-  // The loop runs over a multiple of four rows (the extra ones are computed, never read): GCC
-  // then emits no scalar epilogue, which cost as much per row as four rows of the vector body
-  // (a quarter of the loop's time on 0.5 m cones).
-  const int n = (rows + 3) & ~3;
+  // The loop runs over a multiple of kRowsPerStep rows (the extra ones are computed, never
+  // read): GCC then emits no scalar epilogue, which cost as much per row as a whole step of the
+  // vector body (a quarter of the loop's time on 0.5 m cones).
+  const int n = (rows + kRowsPerStep - 1) & ~(kRowsPerStep - 1);
   out.bind(storage, rows, n);
   if (!s.fast_edges) {
     for (int i = 0; i < rows; ++i)
@@ -254,7 +255,7 @@ inline void estimateConeRows(const ConeScanSetup& s, std::vector<double>& storag
   else if (simd == GridSimd::kAvx2)
     estimateConeRowsAvx2(s, storage, out);
   else
-    estimateConeRows(s, storage, out);
+    estimateConeRows<>(s, storage, out);
 }
 
 // Row `row0 + i` of `est` as a ConeRow, running the exact path when step 1 left it undecided;
