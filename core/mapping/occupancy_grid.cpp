@@ -353,6 +353,68 @@ float* OccupancyGrid::fillTileSlot(int tx, int ty) {
   return slot.tile;
 }
 
+namespace {
+
+// Prefetches (read, into L2) `lines` cache lines (1 to 4) from `first` in each of `rows`
+// consecutive rows of a tile. One loop per line count, so that the loop is the same for every
+// row: a loop over the lines inside the loop over the rows was ~0.05 us slower a 0.5 m cone.
+void prefetchTileRows(const float* first, int rows, int lines) {
+  const float* const end = first + static_cast<std::ptrdiff_t>(rows) * OccupancyGrid::kTileSize;
+  constexpr int kStep = OccupancyGrid::kTileSize;
+  switch (lines) {
+    case 1:
+      for (const float* p = first; p != end; p += kStep)
+        __builtin_prefetch(p, 0, 2);
+      break;
+    case 2:
+      for (const float* p = first; p != end; p += kStep) {
+        __builtin_prefetch(p, 0, 2);
+        __builtin_prefetch(p + 16, 0, 2);
+      }
+      break;
+    case 3:
+      for (const float* p = first; p != end; p += kStep) {
+        __builtin_prefetch(p, 0, 2);
+        __builtin_prefetch(p + 16, 0, 2);
+        __builtin_prefetch(p + 32, 0, 2);
+      }
+      break;
+    default:
+      for (const float* p = first; p != end; p += kStep) {
+        __builtin_prefetch(p, 0, 2);
+        __builtin_prefetch(p + 16, 0, 2);
+        __builtin_prefetch(p + 32, 0, 2);
+        __builtin_prefetch(p + 48, 0, 2);
+      }
+      break;
+  }
+}
+
+}  // namespace
+
+void OccupancyGrid::prefetchConeBox(const ConeScanSetup& s) const {
+  if (!s.has_cells)
+    return;
+  const long lines_per_row = (s.hi >> 4) - (s.lo >> 4) + 1;  // 16 floats a line
+  if (lines_per_row * (s.row1 - s.row0 + 1) > kMaxPrefetchLines)
+    return;
+  for (int ty = s.row0 >> kTileShift; ty <= s.row1 >> kTileShift; ++ty) {
+    const int r0 = std::max(s.row0, ty << kTileShift) & kTileMask;
+    const int r1 = std::min(s.row1, (ty << kTileShift) + kTileMask) & kTileMask;
+    for (int tx = s.lo >> kTileShift; tx <= s.hi >> kTileShift; ++tx) {
+      // Tiles not yet in their slot are skipped: creating them here would allocate tiles the
+      // cone may not touch, and a new tile is in cache anyway.
+      const TileSlot& slot = tile_slots_[static_cast<std::size_t>(
+          ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
+      if (slot.key != tileKey(tx, ty))
+        continue;
+      const int c0 = std::max(s.lo, tx << kTileShift) & kTileMask & ~15;
+      const int c1 = std::min(s.hi, (tx << kTileShift) + kTileMask) & kTileMask;
+      prefetchTileRows(slot.tile + r0 * kTileSize + c0, r1 - r0 + 1, ((c1 - c0) >> 4) + 1);
+    }
+  }
+}
+
 void OccupancyGrid::noteTouched(const CellRect& cells) {
   observed_rect_.extend(cells);
   dirty_rect_.extend(cells);
@@ -412,6 +474,34 @@ IRGS_ALWAYS_INLINE inline int finalRow(const SonarCone& cone, const ConeScanSetu
   }
   return rows.c0(i);
 }
+
+// Runs the exact scan on the rows the estimates left undecided (a few a cone), before the update
+// loop: that loop then reads every row as final cells, and calls nothing out of line for it.
+void resolveUndecidedRows(const SonarCone& cone, const ConeScanSetup& setup,
+                          ConeRowEstimates& rows) {
+  for (int i = 0; i < rows.count; ++i)
+    finalRow(cone, setup, rows, i);
+}
+
+// The rectangle of a cone's non-empty rows, accumulated in locals of the update loop (extending a
+// CellRect& there stored it to memory every row, and made GCC keep the loop's other values on
+// the stack).
+struct TouchedRows {
+  int first = std::numeric_limits<int>::max(), last = -1;
+  int col0 = std::numeric_limits<int>::max(), col1 = std::numeric_limits<int>::min();
+  IRGS_ALWAYS_INLINE void add(int row, int c0, int c1) {
+    first = std::min(first, row);
+    last = row;
+    col0 = std::min(col0, c0);
+    col1 = std::max(col1, c1);
+  }
+  // The rectangle, empty when no row was added.
+  OccupancyGrid::CellRect rect() const {
+    if (last < first)
+      return {};
+    return {col0, first, col1, last};
+  }
+};
 
 // Extends the cone's touched rectangle by a non-empty row (rows come ascending).
 IRGS_ALWAYS_INLINE inline void touchRow(OccupancyGrid::CellRect& touched, int c0, int c1, int row) {
@@ -474,14 +564,23 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
               _mm256_set1_ps(hi),
               _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
               _mm256_setzero_si256()};
+  resolveUndecidedRows(cone, setup, rows);
+  // The row arrays and bounds in locals: the compiler cannot tell that the tile stores leave
+  // them alone, and would reload them every row.
+  const int count = rows.count, row0 = setup.row0;
+  const double* const col0 = rows.col0;
+  const double* const col1 = rows.col1;
+  const double* const free0 = rows.free0;
+  const double* const free1 = rows.free1;
+  TouchedRows bounds;
   std::uint64_t updates = 0;
-  for (int i = 0; i < rows.count; ++i) {
-    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+  for (int i = 0; i < count; ++i) {
+    const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
     if (c0 > c1)
       continue;
-    const int row = setup.row0 + i;
-    const int f0 = rows.f0(i), f1 = rows.f1(i);
-    touchRow(touched, c0, c1, row);
+    const int row = row0 + i;
+    const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
+    bounds.add(row, c0, c1);
     const int ty = row >> kTileShift;
     const int row_offset = (row & kTileMask) * kTileSize;
     for (int col = c0; col <= c1;) {
@@ -493,6 +592,7 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
     }
     updates += static_cast<std::uint64_t>(c1 - c0 + 1);
   }
+  touched = bounds.rect();
   cell_updates_ += updates;
   alignas(32) std::uint32_t lanes[8];
   _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), u.fresh);
@@ -516,32 +616,48 @@ namespace {
 struct Avx512Cells {
   __m512 free_delta, occupied_delta, free_from_zero, occupied_from_zero, lo, hi;
   __m512i iota;
-  std::uint64_t fresh = 0;
+  // Per lane, the cells that were unobserved (at most one a group: < 2^31 for any cone). Counted
+  // with one masked subtraction a group; a popcount of the mask into a scalar sum took four
+  // instructions, and the update is bound by instruction count on the rows of small cones.
+  __m512i fresh_lanes = _mm512_setzero_si512();
 
   IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE void piece(float* row, int a, int b, int f0, int f1) {
     // Locals, so that the loop keeps them in registers.
     const __m512 free_d = free_delta, occupied_d = occupied_delta;
     const __m512 free_z = free_from_zero, occupied_z = occupied_from_zero;
     const __m512 low = lo, high = hi;
-    const __m512i lanes = iota;
-    std::uint64_t count = 0;
+    const __m512i sixteen = _mm512_set1_epi32(16), minus_one = _mm512_set1_epi32(-1);
+    __m512i fresh = fresh_lanes;
     const __m512i va = _mm512_set1_epi32(a), vb = _mm512_set1_epi32(b);
     const __m512i vf0 = _mm512_set1_epi32(f0), vf1 = _mm512_set1_epi32(f1);
-    for (int g = a & ~15; g <= b; g += 16) {
-      const __m512i idx = _mm512_add_epi32(_mm512_set1_epi32(g), lanes);
+    const int g0 = a & ~15;
+    // The lanes' cell indices, stepped with the pointer (not rebuilt from the group start).
+    __m512i idx = _mm512_add_epi32(_mm512_set1_epi32(g0), iota);
+    const float* const last = row + b;
+    for (float* p = row + g0; p <= last; p += 16, idx = _mm512_add_epi32(idx, sixteen)) {
       const __mmask16 in = _mm512_mask_cmple_epi32_mask(_mm512_cmpge_epi32_mask(idx, va), idx, vb);
       const __mmask16 free =
           _mm512_mask_cmple_epi32_mask(_mm512_mask_cmpge_epi32_mask(in, idx, vf0), idx, vf1);
       const __m512 delta = _mm512_mask_blend_ps(free, occupied_d, free_d);
       const __m512 from_zero = _mm512_mask_blend_ps(free, occupied_z, free_z);
-      const __m512 v = _mm512_maskz_loadu_ps(in, row + g);
+      const __m512 v = _mm512_maskz_loadu_ps(in, p);
       const __mmask16 unknown = _mm512_mask_cmp_ps_mask(in, v, v, _CMP_UNORD_Q);
       const __m512 sum = _mm512_mask_add_ps(from_zero, _knot_mask16(unknown), v, delta);
       const __m512 n = _mm512_min_ps(high, _mm512_max_ps(low, sum));
-      _mm512_mask_storeu_ps(row + g, in, n);
-      count += static_cast<std::uint64_t>(__builtin_popcount(_cvtmask16_u32(unknown)));
+      _mm512_mask_storeu_ps(p, in, n);
+      fresh = _mm512_mask_sub_epi32(fresh, unknown, fresh, minus_one);  // +1 where unknown
     }
-    fresh += count;
+    fresh_lanes = fresh;
+  }
+
+  // (Summed through memory: GCC 12 warns inside _mm512_reduce_add_epi32, -Wuninitialized.)
+  IRGS_TARGET_AVX512 std::uint64_t freshCount() const {
+    alignas(64) std::uint32_t lanes[16];
+    _mm512_store_si512(lanes, fresh_lanes);
+    std::uint64_t sum = 0;
+    for (const std::uint32_t n : lanes)
+      sum += n;
+    return sum;
   }
 };
 
@@ -558,14 +674,23 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
                 _mm512_set1_ps(lo),
                 _mm512_set1_ps(hi),
                 _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)};
+  resolveUndecidedRows(cone, setup, rows);
+  // The row arrays and bounds in locals: the compiler cannot tell that the tile stores leave
+  // them alone, and would reload them every row.
+  const int count = rows.count, row0 = setup.row0;
+  const double* const col0 = rows.col0;
+  const double* const col1 = rows.col1;
+  const double* const free0 = rows.free0;
+  const double* const free1 = rows.free1;
+  TouchedRows bounds;
   std::uint64_t updates = 0;
-  for (int i = 0; i < rows.count; ++i) {
-    const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
+  for (int i = 0; i < count; ++i) {
+    const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
     if (c0 > c1)
       continue;
-    const int row = setup.row0 + i;
-    const int f0 = rows.f0(i), f1 = rows.f1(i);
-    touchRow(touched, c0, c1, row);
+    const int row = row0 + i;
+    const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
+    bounds.add(row, c0, c1);
     const int ty = row >> kTileShift;
     const int row_offset = (row & kTileMask) * kTileSize;
     for (int col = c0; col <= c1;) {
@@ -577,8 +702,9 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
     }
     updates += static_cast<std::uint64_t>(c1 - c0 + 1);
   }
+  touched = bounds.rect();
   cell_updates_ += updates;
-  return u.fresh;
+  return u.freshCount();
 }
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
@@ -622,13 +748,17 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
       checkedCone(*this, origin, heading_rad, beam_width_rad, range_m, echo, model);
   const ConeScanSetup setup =
       makeConeScanSetup(cone, resolution_m_, coneCellBounds(cone, resolution_m_));
-  ConeRowEstimates rows;
-  estimateConeRows(setup, scan_scratch_, rows, simd_);
   if (tile_slots_.empty())
     tile_slots_.assign(static_cast<std::size_t>(kTileSlots), TileSlot{});
-  // Rows the estimates left undecided are scanned exactly on the way. (The previous version
-  // prefetched each row's first and last cache line; on this scan's row order the hardware
-  // prefetchers do better: 7-15 % faster without.)
+  prefetchConeBox(setup);
+  ConeRowEstimates rows;
+  estimateConeRows(setup, scan_scratch_, rows, simd_);
+  // Rows the estimates left undecided are scanned exactly: all first on the AVX paths, on the
+  // way on the portable one. The box prefetch above is issued before the estimates so that the
+  // lines arrive while they are computed (0.5 m cones: 15-25 % faster on a shared machine, no
+  // measurable cost when the rows are in cache already). Prefetching each row's first and last
+  // line as the rows are found, in an older version, lost to the hardware prefetchers (7-15 %);
+  // so did prefetching the found rows' lines after the estimates.
   CellRect touched;
   const auto free_delta = static_cast<float>(model.free_log_odds);
   const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
