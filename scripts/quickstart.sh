@@ -45,7 +45,9 @@ fi
 
 # Warnings are errors under CI only; locally the cached choice stands (switching it would
 # rebuild everything).
-cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+# Line tables only (-g1): backtraces keep file:line, the clean build is a good part faster;
+# configure by hand with -DIRGS_DEBUG_INFO=full to step through in gdb.
+cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIRGS_DEBUG_INFO=lines)
 if [ "${CI:-}" = "true" ] || [ "${CI:-}" = "1" ]; then cmake_args+=(-DIRGS_WERROR=ON); fi
 
 echo "== configuring ($build_dir)"
