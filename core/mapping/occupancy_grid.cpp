@@ -337,20 +337,30 @@ bool OccupancyGrid::observed(const Cell& c) const {
          !std::isnan(tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)]);
 }
 
+IRGS_ALWAYS_INLINE inline std::size_t OccupancyGrid::slotIndex(int tx, int ty) {
+  return static_cast<std::size_t>(((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask));
+}
+
 IRGS_ALWAYS_INLINE inline float* OccupancyGrid::slotTile(int tx, int ty) {
-  const TileSlot& slot = tile_slots_[static_cast<std::size_t>(
-      ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
+  const TileSlot& slot = tile_slots_[slotIndex(tx, ty)];
   if (slot.key == tileKey(tx, ty)) [[likely]]
     return slot.tile;
   return fillTileSlot(tx, ty);
 }
 
 float* OccupancyGrid::fillTileSlot(int tx, int ty) {
-  TileSlot& slot = tile_slots_[static_cast<std::size_t>(((ty & kTileSlotMask) << kTileSlotShift) |
-                                                        (tx & kTileSlotMask))];
+  TileSlot& slot = tile_slots_[slotIndex(tx, ty)];
   slot.tile = findOrCreateTile(tx, ty);
   slot.key = tileKey(tx, ty);
   return slot.tile;
+}
+
+bool OccupancyGrid::coneTilesInSlots(const CellRect& cells) const {
+  bool all = true;
+  for (int ty = cells.row0 >> kTileShift; ty <= cells.row1 >> kTileShift; ++ty)
+    for (int tx = cells.col0 >> kTileShift; tx <= cells.col1 >> kTileShift; ++tx)
+      all &= tile_slots_[slotIndex(tx, ty)].key == tileKey(tx, ty);
+  return all;
 }
 
 namespace {
@@ -404,8 +414,7 @@ void OccupancyGrid::prefetchConeBox(const ConeScanSetup& s) const {
     for (int tx = s.lo >> kTileShift; tx <= s.hi >> kTileShift; ++tx) {
       // Tiles not yet in their slot are skipped: creating them here would allocate tiles the
       // cone may not touch, and a new tile is in cache anyway.
-      const TileSlot& slot = tile_slots_[static_cast<std::size_t>(
-          ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
+      const TileSlot& slot = tile_slots_[slotIndex(tx, ty)];
       if (slot.key != tileKey(tx, ty))
         continue;
       const int c0 = std::max(s.lo, tx << kTileShift) & kTileMask & ~15;
@@ -657,25 +666,28 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
   const double* const free0 = rows.free0;
   const double* const free1 = rows.free1;
   const TileSlot* const slots = tile_slots_.data();
-  for (int i = 0; i < count; ++i) {
-    const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
-    if (c0 > c1)
-      continue;
-    const int row = row0 + i;
-    const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
-    const int ty = row >> kTileShift;
-    const int row_offset = (row & kTileMask) * kTileSize;
-    for (int col = c0; col <= c1;) {
-      const int tx = col >> kTileShift;
-      const int base = tx * kTileSize;
-      const int run_end = std::min(c1, base + kTileMask);
-      const TileSlot& slot = slots[static_cast<std::size_t>(
-          ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
-      float* const tile = slot.key == tileKey(tx, ty) ? slot.tile : fillTileSlot(tx, ty);
-      u.piece(tile + row_offset, col - base, run_end - base, f0 - base, f1 - base);
-      col = run_end + 1;
+  const auto update = [&](auto tile_of) IRGS_TARGET_AVX2 IRGS_ALWAYS_INLINE {
+    for (int i = 0; i < count; ++i) {
+      const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
+      if (c0 > c1)
+        continue;
+      const int row = row0 + i;
+      const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
+      const int ty = row >> kTileShift;
+      const int row_offset = (row & kTileMask) * kTileSize;
+      for (int col = c0; col <= c1;) {
+        const int tx = col >> kTileShift;
+        const int base = tx * kTileSize;
+        const int run_end = std::min(c1, base + kTileMask);
+        u.piece(tile_of(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
+        col = run_end + 1;
+      }
     }
-  }
+  };
+  if (coneTilesInSlots(rows_touched.rect))
+    update([slots](int tx, int ty) { return slots[slotIndex(tx, ty)].tile; });
+  else
+    update([this](int tx, int ty) { return slotTile(tx, ty); });
   touched = rows_touched.rect;
   cell_updates_ += rows_touched.cells;
   alignas(32) std::uint32_t lanes[8];
@@ -815,25 +827,28 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
   const double* const free0 = rows.free0;
   const double* const free1 = rows.free1;
   const TileSlot* const slots = tile_slots_.data();
-  for (int i = 0; i < count; ++i) {
-    const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
-    if (c0 > c1)
-      continue;
-    const int row = row0 + i;
-    const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
-    const int ty = row >> kTileShift;
-    const int row_offset = (row & kTileMask) * kTileSize;
-    for (int col = c0; col <= c1;) {
-      const int tx = col >> kTileShift;
-      const int base = tx * kTileSize;
-      const int run_end = std::min(c1, base + kTileMask);
-      const TileSlot& slot = slots[static_cast<std::size_t>(
-          ((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask))];
-      float* const tile = slot.key == tileKey(tx, ty) ? slot.tile : fillTileSlot(tx, ty);
-      u.piece(tile + row_offset, col - base, run_end - base, f0 - base, f1 - base);
-      col = run_end + 1;
+  const auto update = [&](auto tile_of) IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE {
+    for (int i = 0; i < count; ++i) {
+      const int c0 = static_cast<int>(col0[i]), c1 = static_cast<int>(col1[i]);
+      if (c0 > c1)
+        continue;
+      const int row = row0 + i;
+      const int f0 = static_cast<int>(free0[i]), f1 = static_cast<int>(free1[i]);
+      const int ty = row >> kTileShift;
+      const int row_offset = (row & kTileMask) * kTileSize;
+      for (int col = c0; col <= c1;) {
+        const int tx = col >> kTileShift;
+        const int base = tx * kTileSize;
+        const int run_end = std::min(c1, base + kTileMask);
+        u.piece(tile_of(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
+        col = run_end + 1;
+      }
     }
-  }
+  };
+  if (coneTilesInSlots(rows_touched.rect))
+    update([slots](int tx, int ty) { return slots[slotIndex(tx, ty)].tile; });
+  else
+    update([this](int tx, int ty) { return slotTile(tx, ty); });
   touched = rows_touched.rect;
   cell_updates_ += rows_touched.cells;
   return u.freshCount();
