@@ -770,8 +770,9 @@ IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE inline bool anyUndecidedAvx512(const ConeR
 }
 
 // The rectangle of a cone's non-empty rows and their cell count, eight rows a step before the
-// update loop (accumulated in that loop, the four bounds and the count took registers the loop's
-// other values then lost to the stack, ~10 % of a 0.5 m cone's update).
+// update loop: accumulated in that loop, the four bounds and the count took registers that the
+// loop's other values then lost to the stack (with the AVX2 version: 290 fewer instructions a
+// 0.5 m cone under callgrind).
 IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE inline ConeRowsTouched touchedRowsAvx512(
     const ConeRowEstimates& rows, int row0) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
