@@ -201,6 +201,11 @@ class OccupancyGrid {
   // Tile (tx, ty), created if absent, through tile_slots_.
   float* slotTile(int tx, int ty);
   float* fillTileSlot(int tx, int ty);
+  static std::size_t slotIndex(int tx, int ty);
+  // True when every tile of `cells` (a cone's rows' rectangle) is in its slot (the steady state
+  // once an area is mapped): the AVX cone updates then take tiles from tile_slots_ untested, with
+  // no call in their loop (the rare fill's call made GCC keep the loop's values on the stack).
+  bool coneTilesInSlots(const CellRect& cells) const;
   // Prefetches the cells of a small cone's bounding box (at most kMaxPrefetchLines cache lines,
   // tiles already in tile_slots_ only), so that they arrive while the rows are estimated.
   void prefetchConeBox(const ConeScanSetup& setup) const;

@@ -132,7 +132,11 @@ SonarCone makeSonarCone(const Vec2& origin, double heading_rad, double beam_widt
                         double range_m, bool echo, const SonarInverseModel& model) {
   SonarCone cone;
   cone.apex = origin;
-  cone.heading_rad = wrapAngle(heading_rad);
+  // wrapAngle returns an angle already in (-pi, pi] unchanged (std::remainder is exact and
+  // rounds the quotient 1/2 of pi to even, 0); tested first because std::remainder costs as
+  // much as a sincos and headings usually come wrapped.
+  cone.heading_rad =
+      heading_rad > -kPi && heading_rad <= kPi ? heading_rad : wrapAngle(heading_rad);
   cone.half_angle_rad = 0.5 * beam_width_rad;
   const double right = cone.heading_rad - cone.half_angle_rad;
   const double left = cone.heading_rad + cone.half_angle_rad;
