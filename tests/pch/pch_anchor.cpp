@@ -1,0 +1,1 @@
+// Anchor of a precompiled-header target: nothing to compile of its own.
