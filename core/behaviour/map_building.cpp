@@ -975,8 +975,11 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
     cmd = fail("distance budget of " + std::to_string(static_cast<int>(config_.max_distance_m)) +
                " m used up in phase '" + std::string(toString(phase_)) + "'");
   } else if (move_ == Move::kTurn || move_ == Move::kFaceObstacle) {
-    if (turnDone(pose.theta, move_heading_) &&
-        std::abs(sample.measured_velocity.angular_radps) < 0.1) {
+    const TurnStep turn =
+        turnStep(turn_progress_, pose.theta, move_heading_, sample.measured_velocity.angular_radps,
+                 config_.follow.turn_rate_radps);
+    if (turn.done) {
+      turn_progress_ = {};  // the next turn starts afresh, even toward the same heading
       view_.forgetBefore(sample.time_s);
       if (phase_ == MapBuildingPhase::kSeekWall) {
         cmd = startFollowing(pose, MapBuildingPhase::kSeekWall);
@@ -991,7 +994,7 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
                              : 0.0;
       }
     } else {
-      cmd = {0.0, turnRate(pose.theta, move_heading_, config_.follow.turn_rate_radps)};
+      cmd = {0.0, turn.angular_radps};
     }
   } else if (move_ == Move::kBackUp) {
     if ((pose.position() - move_start_).norm() > 0.1)

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/behaviour/behaviour.hpp"
+#include "core/behaviour/motion.hpp"
 #include "core/behaviour/sonar_view.hpp"
 #include "core/behaviour/wall_follower.hpp"
 #include "core/mapping/occupancy_grid.hpp"
@@ -255,6 +256,7 @@ class MapBuildingBehaviour : public Behaviour {
 
   // Interior moves.
   Move move_ = Move::kNone;
+  TurnProgress turn_progress_;             // of the kTurn / kFaceObstacle move
   std::optional<double> contact_since_s_;  // in contact during a turn or back-up, since
   double move_heading_ = 0.0;
   Vec2 move_start_ = Vec2::Zero();

@@ -81,7 +81,10 @@ VelocityCommand WallFollower::startTurn(double turn_rad, WallFollowMode next, co
   next_mode_ = next;
   mode_ = WallFollowMode::kTurn;
   ++turns_;
-  return {0.0, turnRate(pose.theta, target_heading_, config_.turn_rate_radps)};
+  turn_progress_ = {};
+  return {0.0, turnStep(turn_progress_, pose.theta, target_heading_, measured_rate_radps_,
+                        config_.turn_rate_radps)
+                   .angular_radps};
 }
 
 // (a) A wall ahead: turn by the front pair's right-triangle angle so the wall ends up on the
@@ -175,6 +178,7 @@ VelocityCommand WallFollower::follow(const TelemetrySample& sample, const Pose2&
 
 VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
   now_s_ = sample.time_s;
+  measured_rate_radps_ = sample.measured_velocity.angular_radps;
   wall_angle_.reset();
   view_.update(sample);
   const Pose2& pose = sample.odometry_pose;
@@ -220,15 +224,16 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
 
   switch (mode_) {
     case WallFollowMode::kTurn:
-      if (turnDone(pose.theta, target_heading_) &&
-          std::abs(sample.measured_velocity.angular_radps) < 0.1) {
-        mode_ = next_mode_;
-        view_.forgetBefore(sample.time_s);  // readings taken while turning look elsewhere
-        leg_start_ = pose.position();
-        hold_heading_ = pose.theta;
-        return {};
+      if (const TurnStep turn = turnStep(turn_progress_, pose.theta, target_heading_,
+                                         measured_rate_radps_, config_.turn_rate_radps);
+          !turn.done) {
+        return {0.0, turn.angular_radps};
       }
-      return {0.0, turnRate(pose.theta, target_heading_, config_.turn_rate_radps)};
+      mode_ = next_mode_;
+      view_.forgetBefore(sample.time_s);  // readings taken while turning look elsewhere
+      leg_start_ = pose.position();
+      hold_heading_ = pose.theta;
+      return {};
     case WallFollowMode::kBackUp:
       if ((pose.position() - leg_start_).norm() >= config_.back_up_m)
         return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);

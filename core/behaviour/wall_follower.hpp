@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "core/behaviour/behaviour.hpp"
+#include "core/behaviour/motion.hpp"
 #include "core/behaviour/sonar_view.hpp"
 #include "core/robot/robot_profile.hpp"
 
@@ -81,6 +82,7 @@ class WallFollower : public Behaviour {
   WallFollowMode mode_ = WallFollowMode::kSeek;
   WallFollowMode next_mode_ = WallFollowMode::kFollow;
   double target_heading_ = 0.0;
+  TurnProgress turn_progress_;  // of the turn to target_heading_
   double hold_heading_ = 0.0;
   Vec2 leg_start_ = Vec2::Zero();
   double leg_length_m_ = 0.0;
@@ -96,6 +98,7 @@ class WallFollower : public Behaviour {
   bool have_pose_ = false;
   Pose2 last_pose_;
   double now_s_ = 0.0;
+  double measured_rate_radps_ = 0.0;  // the current sample's, for the turns started in this step
   std::string message_;
   std::optional<double> wall_angle_;
   std::optional<double> contact_since_s_;  // in contact while turning or backing up, since

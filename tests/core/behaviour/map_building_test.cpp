@@ -2,15 +2,18 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <optional>
 
 #include "core/mapping/map_score.hpp"
+#include "core/robot/robot_profile_file.hpp"
 #include "core/scenario/behaviour_runner.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "core/world/map_file.hpp"
 #include "tests/core/behaviour/behaviour_test_support.hpp"
+#include "tests/core/behaviour/sampled_link.hpp"
 
 namespace irgs {
 namespace {
@@ -286,6 +289,36 @@ TEST(MapBuilding, SameSeedGivesTheSameGrid) {
   EXPECT_EQ(r.scenario.metrics.steps, a.result.scenario.metrics.steps);
   EXPECT_DOUBLE_EQ(r.scenario.metrics.final_truth.x, a.result.scenario.metrics.final_truth.x);
   EXPECT_DOUBLE_EQ(scoreMap(b.grid(), map, map.start).f1, a.score.f1);
+}
+
+TEST(MapBuilding, BuildsTheArenaOverATenHertzDelayedLinkWithoutHuntingInTheTurns) {
+  // The ARCOS e2e test's run (AmigoBot, thesis arena, SIPs at 10 Hz) with the link modelled
+  // in-process and 100 ms of command delay: the on-the-spot turns used to hunt across their
+  // target heading at turnRate's floor until a sample happened to catch a reversal inside the
+  // tolerance (the e2e run took 130-365 s for the same map and once timed out at 500 s).
+  const WorldMap map = test::loadBundledMap("thesis_arena_250");
+  auto loaded =
+      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_amigo.json");
+  ASSERT_TRUE(loaded.profile);
+  const RobotProfile robot = *loaded.profile;
+  MapBuildingBehaviour behaviour(robot);
+  Simulator sim(map, robot, idealSimConfig());
+  sim.resetPose(map.start);
+  const test::SampledLinkRun run = test::runOverSampledLink(sim, behaviour, {0.1, 0.1}, 600.0);
+  ASSERT_TRUE(run.finished) << "still in '" << behaviour.status().phase << "' after " << run.time_s
+                            << " s";
+  EXPECT_FALSE(run.failed) << behaviour.status().message;
+  std::printf("over the link: %.1f s, %d on-the-spot turns, %d reversals, longest %.1f s\n",
+              run.time_s, run.spot_turns, run.turn_reversals, run.longest_spot_turn_s);
+  EXPECT_LT(run.time_s, 250.0);
+  EXPECT_LT(run.longest_spot_turn_s, 15.0);  // the initial scan (7.9 s) and the turn after it
+  // At most two overshoots per turn (the AmigoBot brakes at 100 deg/s^2: the proportional
+  // approach from 60 deg/s overshoots, then the floor's approach may once more); the old rule
+  // never ended the first turn after the scan.
+  EXPECT_LE(run.turn_reversals, 2 * run.spot_turns);
+  EXPECT_GE(behaviour.obstacleCount(), 1);
+  const MapScore score = scoreMap(behaviour.grid(), map, map.start);
+  EXPECT_GE(score.f1, 0.9) << "P " << score.precision << " R " << score.recall;
 }
 
 }  // namespace

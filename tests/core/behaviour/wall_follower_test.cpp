@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/scenario/behaviour_runner.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "tests/core/behaviour/behaviour_test_support.hpp"
+#include "tests/core/behaviour/sampled_link.hpp"
 
 namespace irgs {
 namespace {
@@ -94,6 +96,24 @@ TEST(WallFollower, BacksOffWhenTheDriveReportsAStallAsFromABumper) {
   EXPECT_LT(backing.linear_mps, 0.0);
   EXPECT_EQ(follower.mode(), WallFollowMode::kBackUp);
   EXPECT_EQ(follower.bumps(), 1);
+}
+
+TEST(WallFollower, TurnsOverATenHertzDelayedLinkWithoutHunting) {
+  // SIPs every 100 ms and commands 100 ms late, as over ARCOS: every on-the-spot turn (at most
+  // 135 deg at 60 deg/s, 2.25 s) ends in bounded time instead of hunting across the target
+  // (with turnRate and turnDone the first turn never ended: 187 s, 463 reversals).
+  const WorldMap map = test::loadBundledMap("thesis_sim1_loop");
+  const RobotProfile robot = test::thesisRobot();
+  WallFollower follower(robot);
+  Simulator sim(map, robot, idealSimConfig());
+  sim.resetPose(map.start);
+  const test::SampledLinkRun run = test::runOverSampledLink(sim, follower, {0.1, 0.1}, 200.0);
+  std::printf("over the link: %d turns, %d reversals, longest on-the-spot turn %.1f s\n",
+              follower.turnCount(), run.turn_reversals, run.longest_spot_turn_s);
+  EXPECT_GT(follower.turnCount(), 5);
+  EXPECT_LT(run.longest_spot_turn_s, 5.0);
+  EXPECT_LE(run.turn_reversals, follower.turnCount());  // at most one overshoot per turn
+  EXPECT_GT(follower.distanceTravelled_m(), 20.0);
 }
 
 }  // namespace
