@@ -47,8 +47,10 @@ constexpr double kStopLowerBound_s = kWatchdog_s - 0.5 - 0.1;
 constexpr double kStopUpperBound_s = kWatchdog_s + 0.5;
 constexpr double kSipRate_hz = 10.0;  // arcos.sip_cycle_ms = 100
 constexpr double kSipRateTolerance_hz = 1.0;
-// Real time: ~2 min usually; one run in five so far took 6.7 min for the same 11.5 m and one
-// timed out at 7 min: the cause is not found yet (see the issue notes).
+// Real time: about 10 s per metre of path on a quiet machine (100-140 s for 10.6-13.3 m on
+// 2026-12-03, before and after turnStep). Outliers: 6.7 min once (a full stdout pipe, fixed in
+// af87616) and one 500 s timeout with the test starved behind a parallel build, wheels stalled
+// against a wall in "follow wall": not explained yet (docs/decisions.md, on-the-spot turns).
 constexpr double kMapBuildingBudget_s = 500.0;
 
 // "status a=1 b=x" -> {a: 1, b: x}; empty when the line is not a status line.
