@@ -11,12 +11,15 @@
 
 namespace irgs {
 
+// turnRate's default floor: static friction never stalls the last degree.
+inline constexpr double kTurnFloor_radps = 0.15;
+
 // Angular velocity that turns the robot from heading_rad to target_rad: proportional with a
 // floor (so static friction never stalls the last degree) and the rate limit. Never zero, so a
 // caller that also waits for the robot to settle must not use it inside the tolerance (a
 // sampled, delayed link then hunts across the target at the floor rate): use turnStep.
 inline double turnRate(double heading_rad, double target_rad, double max_rate_radps,
-                       double floor_radps = 0.15) {
+                       double floor_radps = kTurnFloor_radps) {
   const double err = wrapAngle(target_rad - heading_rad);
   const double w = std::clamp(3.0 * err, -max_rate_radps, max_rate_radps);
   const double floor = std::min(floor_radps, max_rate_radps);
@@ -72,16 +75,12 @@ inline TurnStep turnStep(TurnProgress& progress, double heading_rad, double targ
     progress.crossed = true;  // not a wrap at +-pi: the heading went through the target
   }
   progress.last_error_rad = err;
-  if (std::abs(err) > tolerance_rad) {
-    return {progress.crossed
-                ? turnRate(heading_rad, target_rad, max_rate_radps, kTurnSettleFloor_radps)
-                : turnRate(heading_rad, target_rad, max_rate_radps),
-            false};
-  }
-  if (!progress.crossed)
-    return {turnRate(heading_rad, target_rad, max_rate_radps),
-            std::abs(measured_rate_radps) < kTurnSettledRate_radps};
-  return {0.0, std::abs(measured_rate_radps) < kTurnSettledRate_radps};
+  const bool inside = std::abs(err) <= tolerance_rad;
+  const bool settled = std::abs(measured_rate_radps) < kTurnSettledRate_radps;
+  if (inside && progress.crossed)
+    return {0.0, settled};
+  const double floor = progress.crossed ? kTurnSettleFloor_radps : kTurnFloor_radps;
+  return {turnRate(heading_rad, target_rad, max_rate_radps, floor), inside && settled};
 }
 
 // Heading hold for a straight leg: a proportional correction toward hold_rad.
