@@ -63,7 +63,7 @@ const Table& table() {
          "Added to cells inside the cone before the echo",
          G::kMapping,
          {},
-         -10.0,
+         -OccupancyGrid::kMaxAbsLogOdds,
          0.0},
         [](const RerunParameters& p) { return p.sensor_model.free_log_odds; },
         [](RerunParameters& p, double v) { p.sensor_model.free_log_odds = v; });
@@ -75,7 +75,7 @@ const Table& table() {
          G::kMapping,
          {},
          0.0,
-         10.0},
+         OccupancyGrid::kMaxAbsLogOdds},
         [](const RerunParameters& p) { return p.sensor_model.occupied_log_odds; },
         [](RerunParameters& p, double v) { p.sensor_model.occupied_log_odds = v; });
     number(
@@ -96,7 +96,7 @@ const Table& table() {
          "Cells never go below this",
          G::kMapping,
          {},
-         -100.0,
+         -OccupancyGrid::kMaxAbsLogOdds,  // the grid's 16-bit cells hold no more
          0.0},
         [](const RerunParameters& p) { return p.sensor_model.clamp_min; },
         [](RerunParameters& p, double v) { p.sensor_model.clamp_min = v; });
@@ -108,7 +108,7 @@ const Table& table() {
          G::kMapping,
          {},
          0.0,
-         100.0},
+         OccupancyGrid::kMaxAbsLogOdds},
         [](const RerunParameters& p) { return p.sensor_model.clamp_max; },
         [](RerunParameters& p, double v) { p.sensor_model.clamp_max = v; });
     number(

@@ -25,16 +25,16 @@
 #include "core/mapping/sonar_cone.hpp"
 #include "core/mapping/sonar_cone_scan.hpp"
 
-// Storage (see docs/decisions/grid.md): 64x64-cell tiles of float log-odds, allocated on the
-// first write to any of their cells and found through a hash map on packed tile coordinates.
-// NaN marks a never-observed cell, so "observed" costs no extra memory and the update loop
-// learns it from the value it loads anyway. A cone update first scans the cone into rows (each
-// row: its cells and, within them, the free run; sonar_cone_scan.hpp, all rows at once,
-// vectorised), then updates each row's cells: with SSE2 by runs of equal increments (RunUpdater),
-// or with AVX2 / AVX-512 eight / sixteen cells a step where the CPU has them (chosen at run time,
-// the same bits). Tiles are found through a persistent direct-mapped cache in front of the hash
-// map (tile_slots_). The row and tile buffers are kept between calls, so a warm update allocates
-// nothing.
+// Storage (see docs/decisions/grid.md): 64x64-cell tiles of log-odds in 16-bit fixed point
+// (steps of kLogOddsStep), allocated on the first write to any of their cells and found through a
+// hash map on packed tile coordinates. -32768 marks a never-observed cell, so "observed" costs no
+// extra memory and the update loop learns it from the value it loads anyway. A cone update first
+// scans the cone into rows (each row: its cells and, within them, the free run;
+// sonar_cone_scan.hpp, all rows at once, vectorised), then updates each row's cells: with SSE2 by
+// runs of equal increments (RunUpdater), or with AVX2 / AVX-512 sixteen / thirty-two cells a step
+// where the CPU has them (chosen at run time, the same bits). Tiles are found through a
+// persistent direct-mapped cache in front of the hash map (tile_slots_). The row and tile buffers
+// are kept between calls, so a warm update allocates nothing.
 
 #if defined(__GNUC__)
 #define IRGS_ALWAYS_INLINE __attribute__((always_inline))
@@ -45,51 +45,63 @@
 namespace irgs {
 namespace {
 
-constexpr float kUnobserved = std::numeric_limits<float>::quiet_NaN();
+constexpr std::int16_t kUnobservedCell = std::numeric_limits<std::int16_t>::min();
+constexpr float kUnobservedLogOdds = std::numeric_limits<float>::quiet_NaN();
+constexpr auto kCellStep = static_cast<float>(OccupancyGrid::kLogOddsStep);  // exact: 2^-12
 constexpr int kTileMask = OccupancyGrid::kTileSize - 1;
 
-// The update of one cell: an unobserved (NaN) cell starts from 0, then delta is added and the
-// sum clamped to [lo, hi]. Every path (cone rows, single cells) goes through this expression.
-inline float updatedCell(float v, bool unknown, float delta, float lo, float hi) {
-  return std::min(std::max((unknown ? 0.0f : v) + delta, lo), hi);
+// The update of one cell: an unobserved cell starts from 0, then delta is added and the sum
+// clamped to [lo, hi] (all in cell steps, -32767 <= lo <= hi <= 32767, |delta| <= 32767). Every
+// path computes exactly this. The SIMD ones add with 16-bit saturation, then take the max with lo
+// and the min with hi: saturation only moves a sum beyond +-32767 to -32768 or 32767, which the
+// clamp takes to lo or hi as it would the exact sum.
+inline std::int16_t updatedCell(std::int16_t v, int delta, int lo, int hi) {
+  const int start = v == kUnobservedCell ? 0 : v;
+  return static_cast<std::int16_t>(std::clamp(start + delta, lo, hi));
 }
 
 // Cone cells are updated by runs: a run is cells [a, b] of one tile row that all get the same
 // increment (a row of a cone is at most three runs per tile: occupied, free, occupied). With SSE2
-// (every x86-64) a run is whole aligned groups of four cells, the first and last blended with a
+// (every x86-64) a run is whole aligned groups of eight cells, the first and last blended with a
 // lane mask so that cells outside [a, b] are written back unchanged; elsewhere a plain loop. Both
-// compute exactly updatedCell() for each cell (the SSE2 operand order reproduces std::max and
-// std::min bit for bit, signed zeros included). The count of cells that were unobserved is
-// accumulated per lane and read once per cone.
+// compute exactly updatedCell() for each cell. The count of cells that were unobserved is
+// accumulated per 16-bit lane through a row (at most one cell in eight of a row's at most 2^16 + 1
+// cells, plus one a tile: < 2^15) and per 32-bit lane over the cone (endRow), read once per cone.
 #if defined(__SSE2__)
 class RunUpdater {
  public:
-  RunUpdater(float free_delta, float occupied_delta, float lo, float hi)
-      : free_(_mm_set1_ps(free_delta)),
-        occupied_(_mm_set1_ps(occupied_delta)),
-        lo_(_mm_set1_ps(lo)),
-        hi_(_mm_set1_ps(hi)) {}
+  RunUpdater(int free_delta, int occupied_delta, int lo, int hi)
+      : free_(_mm_set1_epi16(static_cast<std::int16_t>(free_delta))),
+        occupied_(_mm_set1_epi16(static_cast<std::int16_t>(occupied_delta))),
+        lo_(_mm_set1_epi16(static_cast<std::int16_t>(lo))),
+        hi_(_mm_set1_epi16(static_cast<std::int16_t>(hi))) {}
 
   // Cells [a, b] of the tile row starting at `row` (0 <= a <= b < kTileSize). Groups start at
-  // multiples of four cells of the row, so they never leave it.
-  IRGS_ALWAYS_INLINE void run(float* row, int a, int b, bool free) {
-    const __m128 delta = free ? free_ : occupied_;
-    const int g0 = a & ~3;
-    const int g1 = b & ~3;
-    const __m128 head = headMask(a & 3);
-    const __m128 tail = tailMask(b & 3);
+  // multiples of eight cells of the row, so they never leave it.
+  IRGS_ALWAYS_INLINE void run(std::int16_t* row, int a, int b, bool free) {
+    const __m128i delta = free ? free_ : occupied_;
+    const int g0 = a & ~7;
+    const int g1 = b & ~7;
+    const __m128i head = _mm_cmpgt_epi16(iota(), _mm_set1_epi16(static_cast<short>((a & 7) - 1)));
+    const __m128i tail = _mm_cmpgt_epi16(_mm_set1_epi16(static_cast<short>((b & 7) + 1)), iota());
     if (g0 == g1) {
-      masked(row + g0, delta, _mm_and_ps(head, tail));
+      masked(row + g0, delta, _mm_and_si128(head, tail));
       return;
     }
     masked(row + g0, delta, head);
-    for (int g = g0 + 4; g < g1; g += 4)
+    for (int g = g0 + 8; g < g1; g += 8)
       full(row + g, delta);
     masked(row + g1, delta, tail);
   }
 
-  // Cells that were unobserved, over all runs so far. Each lane counts at most one cell in four
-  // of a cone (< 2^31 for any accepted cone), so the 32-bit lanes cannot overflow.
+  // After each cone row: the row's 16-bit counts into the cone's 32-bit ones.
+  IRGS_ALWAYS_INLINE void endRow() {
+    fresh_ = _mm_add_epi32(fresh_, _mm_madd_epi16(row_fresh_, _mm_set1_epi16(1)));
+    row_fresh_ = _mm_setzero_si128();
+  }
+
+  // Cells that were unobserved, over all rows so far (each 32-bit lane < 2^31 for any accepted
+  // cone).
   std::uint64_t fresh() const {
     alignas(16) std::uint32_t lanes[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(lanes), fresh_);
@@ -97,57 +109,52 @@ class RunUpdater {
   }
 
  private:
-  // updatedCell() on four lanes: (unknown ? 0 : v) + delta, then std::max(s, lo) = (s < lo) ?
-  // lo : s = maxps(lo, s) and std::min(m, hi) = (hi < m) ? hi : m = minps(hi, m).
-  IRGS_ALWAYS_INLINE __m128 updated(__m128 v, __m128 unknown, __m128 delta) const {
-    const __m128 sum = _mm_add_ps(_mm_andnot_ps(unknown, v), delta);
-    return _mm_min_ps(hi_, _mm_max_ps(lo_, sum));
+  static __m128i iota() { return _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7); }
+  // updatedCell() on eight lanes (see there for why saturation gives the same).
+  IRGS_ALWAYS_INLINE __m128i updated(__m128i v, __m128i unknown, __m128i delta) const {
+    const __m128i sum = _mm_adds_epi16(_mm_andnot_si128(unknown, v), delta);
+    return _mm_min_epi16(hi_, _mm_max_epi16(lo_, sum));
   }
-  IRGS_ALWAYS_INLINE void full(float* p, __m128 delta) {
-    const __m128 v = _mm_loadu_ps(p);
-    const __m128 unknown = _mm_cmpunord_ps(v, v);
-    _mm_storeu_ps(p, updated(v, unknown, delta));
-    fresh_ = _mm_sub_epi32(fresh_, _mm_castps_si128(unknown));  // a true lane is -1
+  IRGS_ALWAYS_INLINE __m128i unknownLanes(__m128i v) const {
+    return _mm_cmpeq_epi16(v, _mm_set1_epi16(kUnobservedCell));
   }
-  IRGS_ALWAYS_INLINE void masked(float* p, __m128 delta, __m128 mask) {
-    const __m128 v = _mm_loadu_ps(p);
-    const __m128 unknown = _mm_cmpunord_ps(v, v);
-    const __m128 n = updated(v, unknown, delta);
-    _mm_storeu_ps(p, _mm_or_ps(_mm_and_ps(mask, n), _mm_andnot_ps(mask, v)));
-    fresh_ = _mm_sub_epi32(fresh_, _mm_castps_si128(_mm_and_ps(mask, unknown)));
+  IRGS_ALWAYS_INLINE void full(std::int16_t* p, __m128i delta) {
+    auto* const at = reinterpret_cast<__m128i*>(p);
+    const __m128i v = _mm_loadu_si128(at);
+    const __m128i unknown = unknownLanes(v);
+    _mm_storeu_si128(at, updated(v, unknown, delta));
+    row_fresh_ = _mm_sub_epi16(row_fresh_, unknown);  // a true lane is -1
   }
-  // Lanes >= k, lanes <= k.
-  static __m128 headMask(int k) {
-    alignas(16) static constexpr std::int32_t kHead[4][4] = {
-        {-1, -1, -1, -1}, {0, -1, -1, -1}, {0, 0, -1, -1}, {0, 0, 0, -1}};
-    return _mm_load_ps(reinterpret_cast<const float*>(kHead[k]));
-  }
-  static __m128 tailMask(int k) {
-    alignas(16) static constexpr std::int32_t kTail[4][4] = {
-        {-1, 0, 0, 0}, {-1, -1, 0, 0}, {-1, -1, -1, 0}, {-1, -1, -1, -1}};
-    return _mm_load_ps(reinterpret_cast<const float*>(kTail[k]));
+  IRGS_ALWAYS_INLINE void masked(std::int16_t* p, __m128i delta, __m128i mask) {
+    auto* const at = reinterpret_cast<__m128i*>(p);
+    const __m128i v = _mm_loadu_si128(at);
+    const __m128i unknown = unknownLanes(v);
+    const __m128i n = updated(v, unknown, delta);
+    _mm_storeu_si128(at, _mm_or_si128(_mm_and_si128(mask, n), _mm_andnot_si128(mask, v)));
+    row_fresh_ = _mm_sub_epi16(row_fresh_, _mm_and_si128(mask, unknown));
   }
 
-  __m128 free_, occupied_, lo_, hi_;
+  __m128i free_, occupied_, lo_, hi_;
+  __m128i row_fresh_ = _mm_setzero_si128();
   __m128i fresh_ = _mm_setzero_si128();
 };
 #else
 class RunUpdater {
  public:
-  RunUpdater(float free_delta, float occupied_delta, float lo, float hi)
+  RunUpdater(int free_delta, int occupied_delta, int lo, int hi)
       : free_(free_delta), occupied_(occupied_delta), lo_(lo), hi_(hi) {}
-  void run(float* row, int a, int b, bool free) {
-    const float delta = free ? free_ : occupied_;
+  void run(std::int16_t* row, int a, int b, bool free) {
+    const int delta = free ? free_ : occupied_;
     for (int i = a; i <= b; ++i) {
-      const bool unknown = std::isnan(row[i]);
-      row[i] = updatedCell(row[i], unknown, delta, lo_, hi_);
-      fresh_ += unknown ? 1u : 0u;
+      fresh_ += row[i] == kUnobservedCell ? 1u : 0u;
+      row[i] = updatedCell(row[i], delta, lo_, hi_);
     }
   }
+  void endRow() {}
   std::uint64_t fresh() const { return fresh_; }
 
  private:
-  float free_, occupied_, lo_, hi_;
+  int free_, occupied_, lo_, hi_;
   std::uint64_t fresh_ = 0;
 };
 #endif
@@ -161,13 +168,19 @@ std::string describe(const Vec2& p) {
 }  // namespace
 
 std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model) {
-  if (!std::isfinite(model.free_log_odds) || !std::isfinite(model.occupied_log_odds))
-    return "log-odds increments must be finite";
+  // !(|x| <= limit) is also true for NaN.
+  const auto representable = [](double log_odds) {
+    return std::abs(log_odds) <= OccupancyGrid::kMaxAbsLogOdds;
+  };
+  if (!representable(model.free_log_odds) || !representable(model.occupied_log_odds))
+    return "free_log_odds and occupied_log_odds must be finite and within +-7.9998 (the grid's "
+           "16-bit cells)";
   if (!std::isfinite(model.arc_thickness_m) || model.arc_thickness_m < 0.0)
     return "arc_thickness_m must be finite and >= 0";
-  if (!std::isfinite(model.clamp_min) || !std::isfinite(model.clamp_max) ||
+  if (!representable(model.clamp_min) || !representable(model.clamp_max) ||
       model.clamp_min > model.clamp_max)
-    return "clamp_min and clamp_max must be finite with clamp_min <= clamp_max";
+    return "clamp_min and clamp_max must be finite, within +-7.9998 (the grid's 16-bit cells), "
+           "with clamp_min <= clamp_max";
   if (std::isnan(model.no_echo_free_range_m) || model.no_echo_free_range_m < 0.0)
     return "no_echo_free_range_m must be >= 0";
   return std::nullopt;
@@ -305,25 +318,41 @@ IRGS_ALWAYS_INLINE inline OccupancyGrid::TileKey OccupancyGrid::tileKey(int tx, 
          static_cast<TileKey>(static_cast<std::uint32_t>(ty));
 }
 
-const float* OccupancyGrid::findTile(int tx, int ty) const {
+const std::int16_t* OccupancyGrid::findTile(int tx, int ty) const {
   const auto it = tile_index_.find(tileKey(tx, ty));
   return it == tile_index_.end() ? nullptr : tiles_[it->second].data();
 }
 
-float* OccupancyGrid::findOrCreateTile(int tx, int ty) {
+std::int16_t* OccupancyGrid::findOrCreateTile(int tx, int ty) {
   const auto [it, inserted] =
       tile_index_.try_emplace(tileKey(tx, ty), static_cast<std::uint32_t>(tiles_.size()));
   if (inserted)
-    tiles_.emplace_back(static_cast<std::size_t>(kTileCells), kUnobserved);
+    tiles_.emplace_back(static_cast<std::size_t>(kTileCells), kUnobservedCell);
   return tiles_[it->second].data();
 }
 
+OccupancyGrid::CellModel OccupancyGrid::cellModel(const SonarInverseModel& model) {
+  // Rounded away from zero, so that a cell after one update is at least as far from 0 as the
+  // increment: a threshold equal to an increment (grid_compare's -0.4 and the default free
+  // increment) then classifies a cell with one update as the model means it. sonarInverseModelError
+  // keeps every value within +-kMaxAbsLogOdds: +-32767 steps.
+  // (Ceiling by truncation: std::ceil is a libm call without SSE4.1, 2 % of a 0.5 m cone.)
+  const auto steps = [](double log_odds) {
+    const double scaled = std::abs(log_odds) * (1.0 / kLogOddsStep);  // exact: a power of 2
+    auto magnitude = static_cast<int>(scaled);
+    magnitude += magnitude < scaled ? 1 : 0;
+    return static_cast<CellValue>(log_odds < 0.0 ? -magnitude : magnitude);
+  };
+  return {steps(model.free_log_odds), steps(model.occupied_log_odds), steps(model.clamp_min),
+          steps(model.clamp_max)};
+}
+
 float OccupancyGrid::logOdds(const Cell& c) const {
-  const float* tile = findTile(c.col >> kTileShift, c.row >> kTileShift);
+  const std::int16_t* tile = findTile(c.col >> kTileShift, c.row >> kTileShift);
   if (tile == nullptr)
     return 0.0f;
-  const float v = tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)];
-  return std::isnan(v) ? 0.0f : v;
+  const std::int16_t v = tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)];
+  return v == kUnobservedCell ? 0.0f : static_cast<float>(v) * kCellStep;
 }
 
 double OccupancyGrid::probability(const Cell& c) const {
@@ -332,23 +361,23 @@ double OccupancyGrid::probability(const Cell& c) const {
 }
 
 bool OccupancyGrid::observed(const Cell& c) const {
-  const float* tile = findTile(c.col >> kTileShift, c.row >> kTileShift);
+  const std::int16_t* tile = findTile(c.col >> kTileShift, c.row >> kTileShift);
   return tile != nullptr &&
-         !std::isnan(tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)]);
+         tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)] != kUnobservedCell;
 }
 
 IRGS_ALWAYS_INLINE inline std::size_t OccupancyGrid::slotIndex(int tx, int ty) {
   return static_cast<std::size_t>(((ty & kTileSlotMask) << kTileSlotShift) | (tx & kTileSlotMask));
 }
 
-IRGS_ALWAYS_INLINE inline float* OccupancyGrid::slotTile(int tx, int ty) {
+IRGS_ALWAYS_INLINE inline std::int16_t* OccupancyGrid::slotTile(int tx, int ty) {
   const TileSlot& slot = tile_slots_[slotIndex(tx, ty)];
   if (slot.key == tileKey(tx, ty)) [[likely]]
     return slot.tile;
   return fillTileSlot(tx, ty);
 }
 
-float* OccupancyGrid::fillTileSlot(int tx, int ty) {
+std::int16_t* OccupancyGrid::fillTileSlot(int tx, int ty) {
   TileSlot& slot = tile_slots_[slotIndex(tx, ty)];
   slot.tile = findOrCreateTile(tx, ty);
   slot.key = tileKey(tx, ty);
@@ -365,38 +394,23 @@ bool OccupancyGrid::coneTilesInSlots(const CellRect& cells) const {
 
 namespace {
 
-// Prefetches (read, into L2) `lines` cache lines (1 to 4) from `first` in each of `rows`
-// consecutive rows of a tile. One loop per line count, so that the loop is the same for every
-// row: a loop over the lines inside the loop over the rows was ~0.05 us slower a 0.5 m cone.
-void prefetchTileRows(const float* first, int rows, int lines) {
-  const float* const end = first + static_cast<std::ptrdiff_t>(rows) * OccupancyGrid::kTileSize;
+// Prefetches (read, into L2) `lines` cache lines (1 or 2: a tile row is two) from `first` in
+// each of `rows` consecutive rows of a tile. One loop per line count, so that the loop is the
+// same for every row: a loop over the lines inside the loop over the rows was ~0.05 us slower a
+// 0.5 m cone (with float cells).
+void prefetchTileRows(const std::int16_t* first, int rows, int lines) {
+  const std::int16_t* const end =
+      first + static_cast<std::ptrdiff_t>(rows) * OccupancyGrid::kTileSize;
   constexpr int kStep = OccupancyGrid::kTileSize;
-  switch (lines) {
-    case 1:
-      for (const float* p = first; p != end; p += kStep)
-        __builtin_prefetch(p, 0, 2);
-      break;
-    case 2:
-      for (const float* p = first; p != end; p += kStep) {
-        __builtin_prefetch(p, 0, 2);
-        __builtin_prefetch(p + 16, 0, 2);
-      }
-      break;
-    case 3:
-      for (const float* p = first; p != end; p += kStep) {
-        __builtin_prefetch(p, 0, 2);
-        __builtin_prefetch(p + 16, 0, 2);
-        __builtin_prefetch(p + 32, 0, 2);
-      }
-      break;
-    default:
-      for (const float* p = first; p != end; p += kStep) {
-        __builtin_prefetch(p, 0, 2);
-        __builtin_prefetch(p + 16, 0, 2);
-        __builtin_prefetch(p + 32, 0, 2);
-        __builtin_prefetch(p + 48, 0, 2);
-      }
-      break;
+  constexpr int kLineCells = 64 / sizeof(std::int16_t);
+  if (lines == 1) {
+    for (const std::int16_t* p = first; p != end; p += kStep)
+      __builtin_prefetch(p, 0, 2);
+    return;
+  }
+  for (const std::int16_t* p = first; p != end; p += kStep) {
+    __builtin_prefetch(p, 0, 2);
+    __builtin_prefetch(p + kLineCells, 0, 2);
   }
 }
 
@@ -405,7 +419,7 @@ void prefetchTileRows(const float* first, int rows, int lines) {
 void OccupancyGrid::prefetchConeBox(const ConeScanSetup& s) const {
   if (!s.has_cells)
     return;
-  const long lines_per_row = (s.hi >> 4) - (s.lo >> 4) + 1;  // 16 floats a line
+  const long lines_per_row = (s.hi >> 5) - (s.lo >> 5) + 1;  // 32 cells a line
   if (lines_per_row * (s.row1 - s.row0 + 1) > kMaxPrefetchLines)
     return;
   for (int ty = s.row0 >> kTileShift; ty <= s.row1 >> kTileShift; ++ty) {
@@ -417,9 +431,9 @@ void OccupancyGrid::prefetchConeBox(const ConeScanSetup& s) const {
       const TileSlot& slot = tile_slots_[slotIndex(tx, ty)];
       if (slot.key != tileKey(tx, ty))
         continue;
-      const int c0 = std::max(s.lo, tx << kTileShift) & kTileMask & ~15;
+      const int c0 = std::max(s.lo, tx << kTileShift) & kTileMask & ~31;
       const int c1 = std::min(s.hi, (tx << kTileShift) + kTileMask) & kTileMask;
-      prefetchTileRows(slot.tile + r0 * kTileSize + c0, r1 - r0 + 1, ((c1 - c0) >> 4) + 1);
+      prefetchTileRows(slot.tile + r0 * kTileSize + c0, r1 - r0 + 1, ((c1 - c0) >> 5) + 1);
     }
   }
 }
@@ -459,7 +473,7 @@ IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, Con
     const int tx = col >> kTileShift;
     const int base = tx * kTileSize;
     const int run_end = std::min(r.col1, base + kTileMask);
-    float* cells = slotTile(tx, ty) + row_offset;
+    std::int16_t* cells = slotTile(tx, ty) + row_offset;
     // The free run of this piece; empty (f0 > f1) when the row has none or it lies elsewhere.
     const int f0 = std::max(col, r.free0);
     const int f1 = std::min(run_end, r.free1);
@@ -474,15 +488,15 @@ IRGS_ALWAYS_INLINE inline void OccupancyGrid::applyConeRow(const ConeRow& r, Con
     }
     col = run_end + 1;
   }
+  u.endRow();
   cell_updates_ += static_cast<std::uint64_t>(r.col1 - r.col0 + 1);
 }
 
-void OccupancyGrid::applyCell(int col, int row, float delta, float lo, float hi) {
-  float* tile = findOrCreateTile(col >> kTileShift, row >> kTileShift);
-  float& cell = tile[(row & kTileMask) * kTileSize + (col & kTileMask)];
-  const bool unknown = std::isnan(cell);
-  observed_cells_ += unknown ? 1u : 0u;
-  cell = updatedCell(cell, unknown, delta, lo, hi);
+void OccupancyGrid::applyCell(int col, int row, int delta, int lo, int hi) {
+  std::int16_t* tile = findOrCreateTile(col >> kTileShift, row >> kTileShift);
+  std::int16_t& cell = tile[(row & kTileMask) * kTileSize + (col & kTileMask)];
+  observed_cells_ += cell == kUnobservedCell ? 1u : 0u;
+  cell = updatedCell(cell, delta, lo, hi);
   ++cell_updates_;
   noteTouched({col, row, col, row});
 }
@@ -549,37 +563,49 @@ IRGS_ALWAYS_INLINE inline void touchRow(OccupancyGrid::CellRect& touched, int c0
 #if IRGS_GRID_AVX2
 namespace {
 
-// The update of cells [a, b] of one tile row (0 <= a <= b < kTileSize), [f0, f1] of them free
-// (none when f0 > f1), eight at a time: every group of eight aligned within the row that meets
-// [a, b] is loaded, updated per lane with the free or occupied increment, and stored with the
-// lanes outside [a, b] unchanged. The per-lane operations are RunUpdater's (updatedCell(), bit
-// for bit), so the result does not depend on the path.
-struct Avx2Cells {
-  __m256 free_delta, occupied_delta, lo, hi;
-  __m256i iota;
-  __m256i fresh;  // per lane, the cells that were unobserved
+// A free run's bounds relative to a tile row, clamped to [-1, kTileSize] so that they fit in 16
+// bits: the same cells of [0, kTileSize) are within them.
+IRGS_ALWAYS_INLINE inline std::int16_t tileBound(int at) {
+  return static_cast<std::int16_t>(std::clamp(at, -1, OccupancyGrid::kTileSize));
+}
 
-  IRGS_TARGET_AVX2 IRGS_ALWAYS_INLINE void piece(float* row, int a, int b, int f0, int f1) {
-    const __m256i before_a = _mm256_set1_epi32(a - 1);
-    const __m256i after_b = _mm256_set1_epi32(b + 1);
-    const __m256i before_f = _mm256_set1_epi32(f0 - 1);
-    const __m256i after_f = _mm256_set1_epi32(f1 + 1);
-    for (int g = a & ~7; g <= b; g += 8) {
-      const __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(g), iota);
-      const __m256 in = _mm256_castsi256_ps(
-          _mm256_and_si256(_mm256_cmpgt_epi32(idx, before_a), _mm256_cmpgt_epi32(after_b, idx)));
-      const __m256 free = _mm256_castsi256_ps(
-          _mm256_and_si256(_mm256_cmpgt_epi32(idx, before_f), _mm256_cmpgt_epi32(after_f, idx)));
-      const __m256 delta = _mm256_blendv_ps(occupied_delta, free_delta, free);
-      const __m256 v = _mm256_loadu_ps(row + g);
-      const __m256 unknown = _mm256_cmp_ps(v, v, _CMP_UNORD_Q);
-      // (unknown ? 0 : v) + delta, then std::max(s, lo) = maxps(lo, s), std::min(m, hi) =
-      // minps(hi, m), as in RunUpdater.
-      const __m256 sum = _mm256_add_ps(_mm256_andnot_ps(unknown, v), delta);
-      const __m256 n = _mm256_min_ps(hi, _mm256_max_ps(lo, sum));
-      _mm256_storeu_ps(row + g, _mm256_blendv_ps(v, n, in));
-      fresh = _mm256_sub_epi32(fresh, _mm256_castps_si256(_mm256_and_ps(unknown, in)));
+// The update of cells [a, b] of one tile row (0 <= a <= b < kTileSize), [f0, f1] of them free
+// (none when f0 > f1), sixteen at a time: every group of sixteen aligned within the row that
+// meets [a, b] is loaded, updated per lane with the free or occupied increment, and stored with
+// the lanes outside [a, b] unchanged. The per-lane operations are RunUpdater's (updatedCell(),
+// bit for bit), so the result does not depend on the path.
+struct Avx2Cells {
+  __m256i free_delta, occupied_delta, lo, hi, unobserved;
+  __m256i iota;  // 0, 1, ..., 15
+  // Per 16-bit lane, this row's cells that were unobserved (at most four a tile: < 2^15 for any
+  // row); per 32-bit lane, the cone's (endRow).
+  __m256i row_fresh, fresh;
+
+  IRGS_TARGET_AVX2 IRGS_ALWAYS_INLINE void piece(std::int16_t* row, int a, int b, int f0, int f1) {
+    const __m256i before_a = _mm256_set1_epi16(static_cast<short>(a - 1));
+    const __m256i after_b = _mm256_set1_epi16(static_cast<short>(b + 1));
+    const __m256i before_f = _mm256_set1_epi16(static_cast<short>(tileBound(f0) - 1));
+    const __m256i after_f = _mm256_set1_epi16(static_cast<short>(tileBound(f1) + 1));
+    for (int g = a & ~15; g <= b; g += 16) {
+      const __m256i idx = _mm256_add_epi16(_mm256_set1_epi16(static_cast<short>(g)), iota);
+      const __m256i in =
+          _mm256_and_si256(_mm256_cmpgt_epi16(idx, before_a), _mm256_cmpgt_epi16(after_b, idx));
+      const __m256i free =
+          _mm256_and_si256(_mm256_cmpgt_epi16(idx, before_f), _mm256_cmpgt_epi16(after_f, idx));
+      const __m256i delta = _mm256_blendv_epi8(occupied_delta, free_delta, free);
+      auto* const at = reinterpret_cast<__m256i*>(row + g);
+      const __m256i v = _mm256_loadu_si256(at);
+      const __m256i unknown = _mm256_cmpeq_epi16(v, unobserved);
+      const __m256i sum = _mm256_adds_epi16(_mm256_andnot_si256(unknown, v), delta);
+      const __m256i n = _mm256_min_epi16(hi, _mm256_max_epi16(lo, sum));
+      _mm256_storeu_si256(at, _mm256_blendv_epi8(v, n, in));
+      row_fresh = _mm256_sub_epi16(row_fresh, _mm256_and_si256(unknown, in));  // true is -1
     }
+  }
+
+  IRGS_TARGET_AVX2 IRGS_ALWAYS_INLINE void endRow() {
+    fresh = _mm256_add_epi32(fresh, _mm256_madd_epi16(row_fresh, _mm256_set1_epi16(1)));
+    row_fresh = _mm256_setzero_si256();
   }
 };
 
@@ -646,14 +672,18 @@ IRGS_TARGET_AVX2 IRGS_ALWAYS_INLINE inline ConeRowsTouched touchedRowsAvx2(
 
 }  // namespace
 
-IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
-    const SonarCone& cone, const ConeScanSetup& setup, ConeRowEstimates& rows, CellRect& touched,
-    float free_delta, float occupied_delta, float lo, float hi) {
-  Avx2Cells u{_mm256_set1_ps(free_delta),
-              _mm256_set1_ps(occupied_delta),
-              _mm256_set1_ps(lo),
-              _mm256_set1_ps(hi),
-              _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(const SonarCone& cone,
+                                                                const ConeScanSetup& setup,
+                                                                ConeRowEstimates& rows,
+                                                                CellRect& touched,
+                                                                CellModel model) {
+  Avx2Cells u{_mm256_set1_epi16(model.free_delta),
+              _mm256_set1_epi16(model.occupied_delta),
+              _mm256_set1_epi16(model.lo),
+              _mm256_set1_epi16(model.hi),
+              _mm256_set1_epi16(kUnobservedCell),
+              _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+              _mm256_setzero_si256(),
               _mm256_setzero_si256()};
   if (anyUndecidedAvx2(rows)) [[unlikely]]
     resolveUndecidedRows(cone, setup, rows);
@@ -682,6 +712,7 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
         u.piece(tile_of(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
         col = run_end + 1;
       }
+      u.endRow();
     }
   };
   if (coneTilesInSlots(rows_touched.rect))
@@ -700,56 +731,58 @@ IRGS_TARGET_AVX2 std::uint64_t OccupancyGrid::applyConeRowsAvx2(
 
 namespace {
 
-// GCC 12 warns inside its own _mm512_max_ps / _mm512_min_ps (_mm512_undefined_ps as the
-// pass-through operand of an unmasked operation): a false positive.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-// Avx2Cells with sixteen lanes and mask registers: cells outside [a, b] are neither loaded nor
-// stored. An unobserved cell becomes 0 + delta exactly as in updatedCell() (the sum is formed,
-// not assumed equal to delta: 0 + -0 is +0).
+// Avx2Cells with thirty-two lanes and mask registers: cells outside [a, b] are neither loaded
+// nor stored.
 struct Avx512Cells {
-  __m512 free_delta, occupied_delta, free_from_zero, occupied_from_zero, lo, hi;
-  __m512i iota;
-  // Per lane, the cells that were unobserved (at most one a group: < 2^31 for any cone). Counted
-  // with one masked subtraction a group; a popcount of the mask into a scalar sum took four
-  // instructions, and the update is bound by instruction count on the rows of small cones.
-  __m512i fresh_lanes = _mm512_setzero_si512();
+  __m512i free_delta, occupied_delta, lo, hi, unobserved;
+  __m512i iota;  // 0, 1, ..., 31
+  // Per 16-bit lane, this row's cells that were unobserved (at most two a tile: < 2^15 for any
+  // row), counted with one masked subtraction a group (a popcount of the mask into a scalar sum
+  // took more instructions, and the update is bound by instruction count on the rows of small
+  // cones); per 32-bit lane, the cone's (endRow).
+  __m512i row_fresh = _mm512_setzero_si512();
+  __m512i fresh = _mm512_setzero_si512();
 
-  IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE void piece(float* row, int a, int b, int f0, int f1) {
+  IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE void piece(std::int16_t* row, int a, int b, int f0,
+                                                   int f1) {
     // Locals, so that the loop keeps them in registers.
-    const __m512 free_d = free_delta, occupied_d = occupied_delta;
-    const __m512 free_z = free_from_zero, occupied_z = occupied_from_zero;
-    const __m512 low = lo, high = hi;
-    const __m512i sixteen = _mm512_set1_epi32(16), minus_one = _mm512_set1_epi32(-1);
-    __m512i fresh = fresh_lanes;
-    const __m512i va = _mm512_set1_epi32(a), vb = _mm512_set1_epi32(b);
-    const __m512i vf0 = _mm512_set1_epi32(f0), vf1 = _mm512_set1_epi32(f1);
-    const int g0 = a & ~15;
+    const __m512i free_d = free_delta, occupied_d = occupied_delta;
+    const __m512i low = lo, high = hi, none = unobserved;
+    const __m512i thirty_two = _mm512_set1_epi16(32), minus_one = _mm512_set1_epi16(-1);
+    __m512i counts = row_fresh;
+    const __m512i va = _mm512_set1_epi16(static_cast<short>(a));
+    const __m512i vb = _mm512_set1_epi16(static_cast<short>(b));
+    const __m512i vf0 = _mm512_set1_epi16(tileBound(f0));
+    const __m512i vf1 = _mm512_set1_epi16(tileBound(f1));
+    const int g0 = a & ~31;
     // The lanes' cell indices, stepped with the pointer (not rebuilt from the group start).
-    __m512i idx = _mm512_add_epi32(_mm512_set1_epi32(g0), iota);
-    const float* const last = row + b;
-    for (float* p = row + g0; p <= last; p += 16, idx = _mm512_add_epi32(idx, sixteen)) {
-      const __mmask16 in = _mm512_mask_cmple_epi32_mask(_mm512_cmpge_epi32_mask(idx, va), idx, vb);
-      const __mmask16 free =
-          _mm512_mask_cmple_epi32_mask(_mm512_mask_cmpge_epi32_mask(in, idx, vf0), idx, vf1);
-      const __m512 delta = _mm512_mask_blend_ps(free, occupied_d, free_d);
-      const __m512 from_zero = _mm512_mask_blend_ps(free, occupied_z, free_z);
-      const __m512 v = _mm512_maskz_loadu_ps(in, p);
-      const __mmask16 unknown = _mm512_mask_cmp_ps_mask(in, v, v, _CMP_UNORD_Q);
-      const __m512 sum = _mm512_mask_add_ps(from_zero, _knot_mask16(unknown), v, delta);
-      const __m512 n = _mm512_min_ps(high, _mm512_max_ps(low, sum));
-      _mm512_mask_storeu_ps(p, in, n);
-      fresh = _mm512_mask_sub_epi32(fresh, unknown, fresh, minus_one);  // +1 where unknown
+    __m512i idx = _mm512_add_epi16(_mm512_set1_epi16(static_cast<short>(g0)), iota);
+    const std::int16_t* const last = row + b;
+    for (std::int16_t* p = row + g0; p <= last; p += 32, idx = _mm512_add_epi16(idx, thirty_two)) {
+      const __mmask32 in = _mm512_mask_cmple_epi16_mask(_mm512_cmpge_epi16_mask(idx, va), idx, vb);
+      const __mmask32 free =
+          _mm512_mask_cmple_epi16_mask(_mm512_mask_cmpge_epi16_mask(in, idx, vf0), idx, vf1);
+      const __m512i delta = _mm512_mask_blend_epi16(free, occupied_d, free_d);
+      const __m512i v = _mm512_maskz_loadu_epi16(in, p);
+      const __mmask32 unknown = _mm512_mask_cmpeq_epi16_mask(in, v, none);
+      // Unobserved lanes keep delta: 0 + delta.
+      const __m512i sum = _mm512_mask_adds_epi16(delta, _knot_mask32(unknown), v, delta);
+      const __m512i n = _mm512_min_epi16(high, _mm512_max_epi16(low, sum));
+      _mm512_mask_storeu_epi16(p, in, n);
+      counts = _mm512_mask_sub_epi16(counts, unknown, counts, minus_one);  // +1 where unknown
     }
-    fresh_lanes = fresh;
+    row_fresh = counts;
+  }
+
+  IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE void endRow() {
+    fresh = _mm512_add_epi32(fresh, _mm512_madd_epi16(row_fresh, _mm512_set1_epi16(1)));
+    row_fresh = _mm512_setzero_si512();
   }
 
   // (Summed through memory: GCC 12 warns inside _mm512_reduce_add_epi32, -Wuninitialized.)
   IRGS_TARGET_AVX512 std::uint64_t freshCount() const {
     alignas(64) std::uint32_t lanes[16];
-    _mm512_store_si512(lanes, fresh_lanes);
+    _mm512_store_si512(lanes, fresh);
     std::uint64_t sum = 0;
     for (const std::uint32_t n : lanes)
       sum += n;
@@ -806,17 +839,17 @@ IRGS_TARGET_AVX512 IRGS_ALWAYS_INLINE inline ConeRowsTouched touchedRowsAvx512(
 
 }  // namespace
 
-IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
-    const SonarCone& cone, const ConeScanSetup& setup, ConeRowEstimates& rows, CellRect& touched,
-    float free_delta, float occupied_delta, float lo, float hi) {
-  const __m512 zero = _mm512_setzero_ps();
-  Avx512Cells u{_mm512_set1_ps(free_delta),
-                _mm512_set1_ps(occupied_delta),
-                _mm512_add_ps(zero, _mm512_set1_ps(free_delta)),
-                _mm512_add_ps(zero, _mm512_set1_ps(occupied_delta)),
-                _mm512_set1_ps(lo),
-                _mm512_set1_ps(hi),
-                _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)};
+IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(const SonarCone& cone,
+                                                                    const ConeScanSetup& setup,
+                                                                    ConeRowEstimates& rows,
+                                                                    CellRect& touched,
+                                                                    CellModel model) {
+  alignas(64) static constexpr std::int16_t kIota[32] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10,
+                                                         11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21,
+                                                         22, 23, 24, 25, 26, 27, 28, 29, 30, 31};
+  Avx512Cells u{_mm512_set1_epi16(model.free_delta), _mm512_set1_epi16(model.occupied_delta),
+                _mm512_set1_epi16(model.lo),         _mm512_set1_epi16(model.hi),
+                _mm512_set1_epi16(kUnobservedCell),  _mm512_load_si512(kIota)};
   if (anyUndecidedAvx512(rows)) [[unlikely]]
     resolveUndecidedRows(cone, setup, rows);
   const ConeRowsTouched rows_touched = touchedRowsAvx512(rows, setup.row0);
@@ -844,6 +877,7 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
         u.piece(tile_of(tx, ty) + row_offset, col - base, run_end - base, f0 - base, f1 - base);
         col = run_end + 1;
       }
+      u.endRow();
     }
   };
   if (coneTilesInSlots(rows_touched.rect))
@@ -854,9 +888,6 @@ IRGS_TARGET_AVX512 std::uint64_t OccupancyGrid::applyConeRowsAvx512(
   cell_updates_ += rows_touched.cells;
   return u.freshCount();
 }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 #endif
 
 namespace {
@@ -908,22 +939,18 @@ void OccupancyGrid::integrateSonar(const Vec2& origin, double heading_rad, doubl
   // line as the rows are found, in an older version, lost to the hardware prefetchers (7-15 %);
   // so did prefetching the found rows' lines after the estimates.
   CellRect touched;
-  const auto free_delta = static_cast<float>(model.free_log_odds);
-  const auto occupied_delta = static_cast<float>(model.occupied_log_odds);
-  const auto lo = static_cast<float>(model.clamp_min);
-  const auto hi = static_cast<float>(model.clamp_max);
+  const CellModel cells = cellModel(model);
 #if IRGS_GRID_AVX2
   if (simd_ == GridSimd::kAvx512 || simd_ == GridSimd::kAvx2) {
-    const std::uint64_t fresh =
-        simd_ == GridSimd::kAvx512
-            ? applyConeRowsAvx512(cone, setup, rows, touched, free_delta, occupied_delta, lo, hi)
-            : applyConeRowsAvx2(cone, setup, rows, touched, free_delta, occupied_delta, lo, hi);
+    const std::uint64_t fresh = simd_ == GridSimd::kAvx512
+                                    ? applyConeRowsAvx512(cone, setup, rows, touched, cells)
+                                    : applyConeRowsAvx2(cone, setup, rows, touched, cells);
     observed_cells_ += fresh;
     noteTouched(touched);
     return;
   }
 #endif
-  ConeUpdater updater(free_delta, occupied_delta, lo, hi);
+  ConeUpdater updater(cells.free_delta, cells.occupied_delta, cells.lo, cells.hi);
   ConeRow r;
   for (int i = 0; i < rows.count; ++i) {
     const int c0 = finalRow(cone, setup, rows, i), c1 = rows.c1(i);
@@ -943,15 +970,14 @@ void OccupancyGrid::integrateSonarNaive(const Vec2& origin, double heading_rad,
   const SonarCone cone =
       checkedCone(*this, origin, heading_rad, beam_width_rad, range_m, echo, model);
   const CellRect bounds = coneCellBounds(cone, resolution_m_);
-  const auto lo = static_cast<float>(model.clamp_min);
-  const auto hi = static_cast<float>(model.clamp_max);
+  const CellModel cells = cellModel(model);
   for (int row = bounds.row0; row <= bounds.row1; ++row) {
     for (int col = bounds.col0; col <= bounds.col1; ++col) {
       const ConeZone zone = cone.classifyCellWithAngles(col, row, resolution_m_);
       if (zone == ConeZone::kOutside)
         continue;
-      const double delta = zone == ConeZone::kFree ? model.free_log_odds : model.occupied_log_odds;
-      applyCell(col, row, static_cast<float>(delta), lo, hi);
+      applyCell(col, row, zone == ConeZone::kFree ? cells.free_delta : cells.occupied_delta,
+                cells.lo, cells.hi);
     }
   }
 }
@@ -979,22 +1005,24 @@ void OccupancyGrid::copyLogOdds(const CellRect& rect, std::vector<float>& out) c
   if (rect.empty())
     return;
   const auto width = static_cast<std::size_t>(rect.width());
-  out.assign(width * static_cast<std::size_t>(rect.height()), kUnobserved);
+  out.assign(width * static_cast<std::size_t>(rect.height()), kUnobservedLogOdds);
   for (int ty = rect.row0 >> kTileShift; ty <= rect.row1 >> kTileShift; ++ty) {
     const int r0 = std::max(rect.row0, ty * kTileSize);
     const int r1 = std::min(rect.row1, ty * kTileSize + kTileMask);
     for (int tx = rect.col0 >> kTileShift; tx <= rect.col1 >> kTileShift; ++tx) {
-      const float* tile = findTile(tx, ty);
+      const std::int16_t* tile = findTile(tx, ty);
       if (tile == nullptr)
         continue;
       const int c0 = std::max(rect.col0, tx * kTileSize);
       const int c1 = std::min(rect.col1, tx * kTileSize + kTileMask);
-      const auto n = static_cast<std::size_t>(c1 - c0 + 1);
+      const int n = c1 - c0 + 1;
       for (int r = r0; r <= r1; ++r) {
-        const float* src = tile + (r & kTileMask) * kTileSize + (c0 & kTileMask);
+        const std::int16_t* src = tile + (r & kTileMask) * kTileSize + (c0 & kTileMask);
         float* dst = out.data() + static_cast<std::size_t>(r - rect.row0) * width +
                      static_cast<std::size_t>(c0 - rect.col0);
-        std::memcpy(dst, src, n * sizeof(float));
+        for (int i = 0; i < n; ++i)
+          dst[i] = src[i] == kUnobservedCell ? kUnobservedLogOdds
+                                             : static_cast<float>(src[i]) * kCellStep;
       }
     }
   }
@@ -1021,7 +1049,7 @@ RasterMap OccupancyGrid::toRaster() const {
 }
 
 std::size_t OccupancyGrid::memoryBytes() const {
-  return tiles_.size() * (static_cast<std::size_t>(kTileCells) * sizeof(float)) +
+  return tiles_.size() * (static_cast<std::size_t>(kTileCells) * sizeof(CellValue)) +
          tile_index_.size() * (sizeof(TileKey) + sizeof(std::uint32_t) + 2 * sizeof(void*));
 }
 
@@ -1036,7 +1064,8 @@ bool operator==(const OccupancyGrid& a, const OccupancyGrid& b) {
     if (it == b.tile_index_.end())
       return false;
     if (std::memcmp(a.tiles_[index].data(), b.tiles_[it->second].data(),
-                    static_cast<std::size_t>(OccupancyGrid::kTileCells) * sizeof(float)) != 0)
+                    static_cast<std::size_t>(OccupancyGrid::kTileCells) *
+                        sizeof(OccupancyGrid::CellValue)) != 0)
       return false;
   }
   return true;

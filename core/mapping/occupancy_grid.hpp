@@ -4,8 +4,10 @@
 //
 // Cell (col, row) covers world [col*res, (col+1)*res) x [row*res, (row+1)*res): cell (0, 0) has
 // its lower-left corner at the world origin, columns grow with +x, rows with +y. Storage is a
-// sparse set of 64x64-cell tiles allocated on first write (docs/decisions/grid.md says why).
-// The grid is a plain value: copies are deep and independent.
+// sparse set of 64x64-cell tiles allocated on first write. Cells hold log-odds in 16-bit fixed
+// point, steps of kLogOddsStep (1/4096), so that a room at 1 cm fits in half the cache a float
+// grid needs (docs/decisions/grid.md says why). The grid is a plain value: copies are deep and
+// independent.
 
 #include <cstddef>
 #include <cstdint>
@@ -33,7 +35,9 @@ struct Cell {
 
 // Inverse sensor model of one sonar reading (cone): cells inside the cone closer than the range
 // become more likely free; cells on the arc at the range (thickness arc_thickness_m) become more
-// likely occupied. Log-odds increments are added and clamped.
+// likely occupied. Log-odds increments are added and clamped. The grid rounds the increments and
+// the clamps away from zero to its cells' steps (OccupancyGrid::kLogOddsStep: -0.4 becomes
+// -1639/4096 = -0.40015); all four must lie within +-OccupancyGrid::kMaxAbsLogOdds.
 struct SonarInverseModel {
   double free_log_odds = -0.4;
   double occupied_log_odds = 0.85;
@@ -44,16 +48,17 @@ struct SonarInverseModel {
   double no_echo_free_range_m = 1.5;
 };
 
-// What is wrong with a model (non-finite increments, negative thickness or range, clamp_min >
-// clamp_max), or nothing when it is usable.
+// What is wrong with a model (non-finite increments, increments or clamps beyond
+// +-OccupancyGrid::kMaxAbsLogOdds, negative thickness or range, clamp_min > clamp_max), or
+// nothing when it is usable.
 std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model);
 
 // Instruction sets a cone update can use. kPortable (SSE2 on x86-64, plain C++ elsewhere) runs
-// everywhere; kAvx2 (8 floats / 4 doubles a step) and kAvx512 (16 floats / 8 doubles, masked
+// everywhere; kAvx2 (16 cells / 4 doubles a step) and kAvx512 (32 cells / 8 doubles, masked
 // loads and stores; AVX-512 F, BW, DQ and VL) where the CPU has them, chosen at run time. They
-// give bit-identical grids: every cell and every row boundary goes through the same IEEE
-// operations, only more lanes at a time (tests run each one the machine supports against the
-// per-cell reference).
+// give bit-identical grids: every row boundary goes through the same IEEE operations and every
+// cell through the same integer ones, only more lanes at a time (tests run each one the machine
+// supports against the per-cell reference).
 enum class GridSimd : std::uint8_t { kPortable, kAvx2, kAvx512 };
 bool gridSimdSupported(GridSimd simd);
 // The widest supported one, the default of every grid.
@@ -66,6 +71,11 @@ class OccupancyGrid {
   static constexpr int kMaxCellIndex = 1 << 30;
   // Largest cone radius accepted by integrateSonar, in cells (327 m at 1 cm).
   static constexpr int kMaxConeRadiusCells = 1 << 15;
+  // Cells hold log-odds as multiples of kLogOddsStep in 16 bits: at most kMaxAbsLogOdds (7.9998,
+  // p within 3.4e-4 of 0 or 1) either way. Finer than any sonar model's increments by far (the
+  // default ones are -0.4 and 0.85: 1639 and 3482 steps).
+  static constexpr double kLogOddsStep = 1.0 / 4096.0;
+  static constexpr double kMaxAbsLogOdds = 32767.0 * kLogOddsStep;
 
   // Throws std::invalid_argument unless resolution_m is finite and > 0.
   explicit OccupancyGrid(double resolution_m = 0.01);
@@ -93,7 +103,7 @@ class OccupancyGrid {
   // True when every point within margin_m of p maps to a cell inside +-kMaxCellIndex.
   bool isAddressable(const Vec2& p, double margin_m = 0.0) const;
 
-  // Log-odds of a cell, 0 for never-observed cells.
+  // Log-odds of a cell (a multiple of kLogOddsStep), 0 for never-observed cells.
   float logOdds(const Cell& c) const;
   double probability(const Cell& c) const;
   bool observed(const Cell& c) const;
@@ -166,7 +176,7 @@ class OccupancyGrid {
 
   // Number of cell updates performed since construction (for benchmarks and tests).
   std::uint64_t cellUpdates() const { return cell_updates_; }
-  // Tiles allocated so far and the memory they hold (each tile is kTileSize² floats).
+  // Tiles allocated so far and the memory they hold (each tile is kTileSize² 16-bit cells).
   std::size_t tileCount() const { return tiles_.size(); }
   std::size_t memoryBytes() const;
 
@@ -180,12 +190,19 @@ class OccupancyGrid {
 
  private:
   // Tile (tx, ty) holds cells col in [tx*64, tx*64+63], row in [ty*64, ty*64+63], row-major,
-  // NaN = never observed. tiles_ owns them (inner vectors keep their buffers when the outer one
-  // grows); tile_index_ maps the packed tile coordinates to a position in tiles_.
+  // each log-odds / kLogOddsStep, -32768 = never observed (no log-odds rounds to it). tiles_
+  // owns them (inner vectors keep their buffers when the outer one grows); tile_index_ maps the
+  // packed tile coordinates to a position in tiles_.
+  using CellValue = std::int16_t;
   using TileKey = std::uint64_t;
   static TileKey tileKey(int tx, int ty);
-  const float* findTile(int tx, int ty) const;
-  float* findOrCreateTile(int tx, int ty);
+  const CellValue* findTile(int tx, int ty) const;
+  CellValue* findOrCreateTile(int tx, int ty);
+  // A model's increments and clamps in cell steps.
+  struct CellModel {
+    CellValue free_delta, occupied_delta, lo, hi;
+  };
+  static CellModel cellModel(const SonarInverseModel& model);
   // Applies one rasterised cone row (free and occupied increments, clamped to [lo, hi]).
   struct ConeUpdater;
   void applyConeRow(const ConeRow& row, ConeUpdater& updater);
@@ -193,14 +210,12 @@ class OccupancyGrid {
   // gridSimdSupported says so): every row of `rows` (undecided ones scanned exactly first),
   // `touched` extended by each non-empty one. Return the cells that were unobserved.
   std::uint64_t applyConeRowsAvx2(const SonarCone& cone, const ConeScanSetup& setup,
-                                  ConeRowEstimates& rows, CellRect& touched, float free_delta,
-                                  float occupied_delta, float lo, float hi);
+                                  ConeRowEstimates& rows, CellRect& touched, CellModel model);
   std::uint64_t applyConeRowsAvx512(const SonarCone& cone, const ConeScanSetup& setup,
-                                    ConeRowEstimates& rows, CellRect& touched, float free_delta,
-                                    float occupied_delta, float lo, float hi);
+                                    ConeRowEstimates& rows, CellRect& touched, CellModel model);
   // Tile (tx, ty), created if absent, through tile_slots_.
-  float* slotTile(int tx, int ty);
-  float* fillTileSlot(int tx, int ty);
+  CellValue* slotTile(int tx, int ty);
+  CellValue* fillTileSlot(int tx, int ty);
   static std::size_t slotIndex(int tx, int ty);
   // True when every tile of `cells` (a cone's rows' rectangle) is in its slot (the steady state
   // once an area is mapped): the AVX cone updates then take tiles from tile_slots_ untested, with
@@ -209,10 +224,11 @@ class OccupancyGrid {
   // Prefetches the cells of a small cone's bounding box (at most kMaxPrefetchLines cache lines,
   // tiles already in tile_slots_ only), so that they arrive while the rows are estimated.
   void prefetchConeBox(const ConeScanSetup& setup) const;
-  // 64 KB: the boxes of cones up to ~1 m at 1 cm. Prefetching the boxes of 1.5 m cones (~1500
-  // lines, most outside the cone) measured slower than leaving them to the hardware.
-  static constexpr long kMaxPrefetchLines = 1000;
-  void applyCell(int col, int row, float delta, float lo, float hi);
+  // 32 KB: the boxes of cones up to ~1 m at 1 cm. Prefetching the boxes of 1.5 m cones (with
+  // float cells ~1500 lines, most outside the cone) measured slower than leaving them to the
+  // hardware.
+  static constexpr long kMaxPrefetchLines = 500;
+  void applyCell(int col, int row, int delta, int lo, int hi);
   void noteTouched(const CellRect& cells);
 
   double resolution_m_;
@@ -221,7 +237,7 @@ class OccupancyGrid {
   std::uint64_t observed_cells_ = 0;
   CellRect observed_rect_;
   CellRect dirty_rect_;
-  // Tile buffers start on a cache line (64 bytes): a tile row (256 bytes) is then four whole
+  // Tile buffers start on a cache line (64 bytes): a tile row (128 bytes) is then two whole
   // lines, and no 32- or 64-byte access of the vectorised cone update straddles two of them.
   template <class T>
   struct CacheLineAllocator {
@@ -237,7 +253,7 @@ class OccupancyGrid {
     }
     friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
   };
-  std::vector<std::vector<float, CacheLineAllocator<float>>> tiles_;
+  std::vector<std::vector<CellValue, CacheLineAllocator<CellValue>>> tiles_;
   std::unordered_map<TileKey, std::uint32_t> tile_index_;
   // A direct-mapped cache of tile pointers in front of tile_index_: kTileSlots entries indexed by
   // the low bits of (tx, ty), so that a cone's runs find their tiles without hashing (a 20 m x
@@ -248,7 +264,7 @@ class OccupancyGrid {
   // value.
   struct TileSlot {
     TileKey key = kNoTile;
-    float* tile = nullptr;
+    CellValue* tile = nullptr;
   };
   static constexpr TileKey kNoTile = TileKey{1} << 63;  // tx = INT_MIN: no tile has it
   static constexpr int kTileSlotShift = 5;

@@ -15,6 +15,13 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A log-odds as the grid's cells hold it: a whole number of steps of 1/4096, rounded away from
+// zero (occupancy_grid.hpp).
+float inCellSteps(double log_odds) {
+  const double steps = std::ceil(std::abs(log_odds) * 4096.0);
+  return static_cast<float>((log_odds < 0.0 ? -steps : steps) / 4096.0);
+}
+
 // Renders cells [col0, col1] x [row1 down to row0] as text: ' ' unobserved, '.' free
 // (log-odds < 0), '#' occupied (> 0), '?' observed but exactly 0.
 std::vector<std::string> render(const OccupancyGrid& grid, int col0, int col1, int row0, int row1) {
@@ -127,9 +134,8 @@ TEST(OccupancyGrid, FreeCellsGetTheFreeIncrementAndArcCellsTheOccupiedOne) {
   OccupancyGrid grid(0.01);
   SonarInverseModel model;
   grid.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 2.0, true, model);
-  EXPECT_FLOAT_EQ(grid.logOdds(grid.cellAt({1.0, 0.0})), static_cast<float>(model.free_log_odds));
-  EXPECT_FLOAT_EQ(grid.logOdds(grid.cellAt({2.0, 0.0})),
-                  static_cast<float>(model.occupied_log_odds));
+  EXPECT_EQ(grid.logOdds(grid.cellAt({1.0, 0.0})), -1639.0f / 4096.0f);  // -0.4 in cell steps
+  EXPECT_EQ(grid.logOdds(grid.cellAt({2.0, 0.0})), 3482.0f / 4096.0f);   // 0.85
   EXPECT_LT(grid.probability(grid.cellAt({1.0, 0.0})), 0.5);
   EXPECT_GT(grid.probability(grid.cellAt({2.0, 0.0})), 0.5);
   EXPECT_FALSE(grid.observed(grid.cellAt({2.1, 0.0})));
@@ -261,8 +267,8 @@ TEST(OccupancyGrid, CopiesAreDeepAndIndependent) {
   EXPECT_TRUE(a == b);
   b.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 1.0, true, {});
   EXPECT_FALSE(a == b);
-  EXPECT_FLOAT_EQ(a.logOdds(a.cellAt({0.5, 0.0})), -0.4f);
-  EXPECT_FLOAT_EQ(b.logOdds(b.cellAt({0.5, 0.0})), -0.8f);
+  EXPECT_EQ(a.logOdds(a.cellAt({0.5, 0.0})), inCellSteps(-0.4));
+  EXPECT_EQ(b.logOdds(b.cellAt({0.5, 0.0})), 2.0f * inCellSteps(-0.4));
   OccupancyGrid c(0.05);
   c = b;
   a.integrateSonar({5.0, 5.0}, 0.0, degToRad(25.0), 1.0, true, {});
@@ -322,6 +328,44 @@ TEST(OccupancyGrid, RejectsInvalidConeArguments) {
   EXPECT_TRUE(sonarInverseModelError(bad).has_value());
   EXPECT_FALSE(sonarInverseModelError(ok).has_value());
   EXPECT_EQ(grid.observedCellCount(), 0u);  // nothing half-applied
+}
+
+TEST(OccupancyGrid, ModelValuesMustFitTheSixteenBitCells) {
+  const auto error = [](double SonarInverseModel::*field, double value) {
+    SonarInverseModel model;
+    model.clamp_min = -OccupancyGrid::kMaxAbsLogOdds;
+    model.clamp_max = OccupancyGrid::kMaxAbsLogOdds;
+    model.*field = value;
+    return sonarInverseModelError(model);
+  };
+  for (const auto field : {&SonarInverseModel::free_log_odds, &SonarInverseModel::occupied_log_odds,
+                           &SonarInverseModel::clamp_min, &SonarInverseModel::clamp_max}) {
+    const double sign = field == &SonarInverseModel::clamp_min ? -1.0 : 1.0;
+    EXPECT_FALSE(error(field, sign * OccupancyGrid::kMaxAbsLogOdds));
+    const auto beyond = error(field, sign * (OccupancyGrid::kMaxAbsLogOdds + 1e-9));
+    ASSERT_TRUE(beyond);
+    EXPECT_NE(beyond->find("16-bit"), std::string::npos) << *beyond;
+    EXPECT_TRUE(error(field, std::nan("")));
+  }
+  SonarInverseModel too_high;
+  too_high.clamp_max = 10.0;
+  OccupancyGrid grid(0.01);
+  EXPECT_THROW(grid.integrateSonar({0.0, 0.0}, 0.0, 0.5, 1.0, true, too_high),
+               std::invalid_argument);
+}
+
+TEST(OccupancyGrid, IncrementsAndClampsRoundAwayFromZeroToCellSteps) {
+  OccupancyGrid grid(0.01);
+  SonarInverseModel model;
+  model.free_log_odds = -0.3;      // -1228.8 steps: -1229
+  model.occupied_log_odds = 1e-6;  // below one step: still one
+  model.clamp_min = -0.5;          // -2048 steps, exact
+  grid.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 1.0, true, model);
+  EXPECT_EQ(grid.logOdds(grid.cellAt({0.5, 0.0})), -1229.0f / 4096.0f);
+  EXPECT_EQ(grid.logOdds(grid.cellAt({1.0, 0.0})), 1.0f / 4096.0f);
+  EXPECT_LT(grid.logOdds(grid.cellAt({0.5, 0.0})), -0.3);  // never weaker than the model's
+  grid.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 1.0, true, model);
+  EXPECT_EQ(grid.logOdds(grid.cellAt({0.5, 0.0})), -0.5f);  // clamped
 }
 
 // A random cone of the kind the robot produces, and the awkward ones: headings near +-pi, beams
@@ -406,6 +450,50 @@ TEST(OccupancyGrid, FastAndNaiveAccumulateToTheSameGrid) {
     EXPECT_TRUE(fast == naive) << firstDifference(fast, naive);
     EXPECT_EQ(fast.exploredArea_m2(), naive.exploredArea_m2());
     EXPECT_EQ(fast.takeDirtyRect(), naive.takeDirtyRect());
+  }
+}
+
+TEST(OccupancyGrid, SaturatingSumsEqualTheExactClampedSum) {
+  // The SIMD paths add in 16 bits with saturation; with increments near the cells' limit and
+  // models whose clamps differ (cells beyond the current model's clamps), every path must still
+  // give the exact sum clamped to the current model's [clamp_min, clamp_max].
+  SonarInverseModel wide;
+  wide.free_log_odds = -OccupancyGrid::kMaxAbsLogOdds;
+  wide.occupied_log_odds = OccupancyGrid::kMaxAbsLogOdds;
+  wide.clamp_min = -OccupancyGrid::kMaxAbsLogOdds;
+  wide.clamp_max = OccupancyGrid::kMaxAbsLogOdds;
+  SonarInverseModel narrow = wide;
+  narrow.clamp_min = -0.5;
+  narrow.clamp_max = 0.25;
+  SonarInverseModel inverted = wide;  // free cells pushed up, arcs down
+  inverted.free_log_odds = 7.5;
+  inverted.occupied_log_odds = -7.5;
+  const SonarInverseModel models[] = {wide, narrow, inverted};
+  for (const GridSimd simd : supportedSimd()) {
+    SCOPED_TRACE("simd " + std::to_string(static_cast<int>(simd)));
+    std::mt19937_64 rng(31);
+    OccupancyGrid fast(0.02), naive(0.02);
+    fast.setSimd(simd);
+    for (int i = 0; i < 300; ++i) {
+      RandomCone c = randomCone(rng, 2.0);
+      c.origin *= 0.2;
+      const SonarInverseModel& model = models[rng() % 3];
+      fast.integrateSonar(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+      naive.integrateSonarNaive(c.origin, c.heading_rad, c.beam_rad, c.range_m, c.echo, model);
+    }
+    EXPECT_TRUE(fast == naive) << firstDifference(fast, naive);
+    // One cell by hand: two wide free updates stop at the floor, a narrow one lifts it to -0.5
+    // (not -0.5 minus the increment), an inverted one adds 7.5 to that.
+    OccupancyGrid grid(0.01);
+    grid.setSimd(simd);
+    const Cell cell = grid.cellAt({0.5, 0.0});
+    for (const SonarInverseModel* m : {&wide, &wide})
+      grid.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 1.0, true, *m);
+    EXPECT_EQ(grid.logOdds(cell), -32767.0f / 4096.0f);
+    grid.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 1.0, true, narrow);
+    EXPECT_EQ(grid.logOdds(cell), -0.5f);
+    grid.integrateSonar({0.0, 0.0}, 0.0, degToRad(25.0), 1.0, true, inverted);
+    EXPECT_EQ(grid.logOdds(cell), 7.0f);
   }
 }
 
