@@ -6,8 +6,10 @@
 //
 // What each side computes per reading (docs/performance.md has the figures):
 // - IRGS: the exact circular sector (cell centres inside the beam's two half-planes; free below
-//   range - arc/2, occupied on the 3 cm arc band), float log-odds +0.85 / -0.4 clamped to
-//   [-4, 4], plus the newly-observed count and the dirty rectangle.
+//   range - arc/2, occupied on the 3 cm arc band), log-odds +0.85 / -0.4 clamped to [-4, 4] on
+//   16-bit cells (steps of 1/4096), plus the newly-observed count and the dirty rectangle. With
+//   the widest instruction set the CPU has (BM_IrgsSonarInsert30deg) and, where AVX-512 is that,
+//   with AVX2 too (BM_IrgsAvx2SonarInsert30deg: what an AVX2-only machine runs).
 // - MRPT: its own sonar model on 8-bit cells (a triangle apex / edge end points filled free, the
 //   cells near the range marked occupied), after composing the robot and sensor poses.
 // Built only when libmrpt-dev is installed (bench/mapping/CMakeLists.txt).
@@ -67,11 +69,12 @@ std::vector<mrpt::obs::CObservationRange> mrptObservations(const std::vector<Sho
   return out;
 }
 
-void BM_IrgsSonarInsert30deg(benchmark::State& state) {
+void irgsSonarInsert(benchmark::State& state, GridSimd simd) {
   const std::vector<Shot> shots =
       randomShots(4096, static_cast<double>(state.range(0)) / 100.0, 42);
   const SonarInverseModel model;
   OccupancyGrid grid(kResolution);
+  grid.setSimd(simd);
   for (const Shot& s : shots)
     grid.integrateSonar(s.origin, s.heading_rad, kBeam, s.range_m, true, model);
   const std::uint64_t before = grid.cellUpdates();
@@ -86,6 +89,18 @@ void BM_IrgsSonarInsert30deg(benchmark::State& state) {
   state.counters["cells/cone"] =
       static_cast<double>(grid.cellUpdates() - before) /
       static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
+}
+
+void BM_IrgsSonarInsert30deg(benchmark::State& state) {
+  irgsSonarInsert(state, bestGridSimd());
+}
+
+void BM_IrgsAvx2SonarInsert30deg(benchmark::State& state) {
+  if (!gridSimdSupported(GridSimd::kAvx2) || bestGridSimd() == GridSimd::kAvx2) {
+    state.SkipWithError("AVX2 not supported or already the default (BM_IrgsSonarInsert30deg)");
+    return;
+  }
+  irgsSonarInsert(state, GridSimd::kAvx2);
 }
 
 void BM_MrptSonarInsert30deg(benchmark::State& state) {
@@ -116,6 +131,7 @@ void BM_MrptSonarInsert30deg(benchmark::State& state) {
 
 // Argument: echo range in centimetres.
 BENCHMARK(BM_IrgsSonarInsert30deg)->Arg(50)->Arg(150)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_IrgsAvx2SonarInsert30deg)->Arg(50)->Arg(150)->Arg(300)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MrptSonarInsert30deg)->Arg(50)->Arg(150)->Arg(300)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
