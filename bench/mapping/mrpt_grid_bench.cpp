@@ -9,7 +9,8 @@
 //   range - arc/2, occupied on the 3 cm arc band), log-odds +0.85 / -0.4 clamped to [-4, 4] on
 //   16-bit cells (steps of 1/4096), plus the newly-observed count and the dirty rectangle. With
 //   the widest instruction set the CPU has (BM_IrgsSonarInsert30deg) and, where AVX-512 is that,
-//   with AVX2 too (BM_IrgsAvx2SonarInsert30deg: what an AVX2-only machine runs).
+//   with AVX2 too (BM_IrgsAvx2SonarInsert30deg: what an AVX2-only machine runs) and with the
+//   portable path (BM_IrgsPortableSonarInsert30deg: SSE2, what any x86-64 runs).
 // - MRPT: its own sonar model on 8-bit cells (a triangle apex / edge end points filled free, the
 //   cells near the range marked occupied), after composing the robot and sensor poses.
 // Built only when libmrpt-dev is installed (bench/mapping/CMakeLists.txt).
@@ -103,6 +104,14 @@ void BM_IrgsAvx2SonarInsert30deg(benchmark::State& state) {
   irgsSonarInsert(state, GridSimd::kAvx2);
 }
 
+void BM_IrgsPortableSonarInsert30deg(benchmark::State& state) {
+  if (bestGridSimd() == GridSimd::kPortable) {
+    state.SkipWithError("the portable path is already the default (BM_IrgsSonarInsert30deg)");
+    return;
+  }
+  irgsSonarInsert(state, GridSimd::kPortable);
+}
+
 void BM_MrptSonarInsert30deg(benchmark::State& state) {
   const std::vector<Shot> shots =
       randomShots(4096, static_cast<double>(state.range(0)) / 100.0, 42);
@@ -132,6 +141,11 @@ void BM_MrptSonarInsert30deg(benchmark::State& state) {
 // Argument: echo range in centimetres.
 BENCHMARK(BM_IrgsSonarInsert30deg)->Arg(50)->Arg(150)->Arg(300)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IrgsAvx2SonarInsert30deg)->Arg(50)->Arg(150)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_IrgsPortableSonarInsert30deg)
+    ->Arg(50)
+    ->Arg(150)
+    ->Arg(300)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MrptSonarInsert30deg)->Arg(50)->Arg(150)->Arg(300)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
