@@ -148,9 +148,14 @@ IRGS_SCAN_INLINE void estimateRows(const ConeScanSetup& s, int n, double* __rest
   const double right_slope = s.right_slope, left_slope = s.left_slope;
   const double right_err = s.right_err, left_err = s.left_err, disc_err = s.disc_err;
   const double outer2 = s.outer2, free2 = s.free2;
+  // First the rows' dy, into free1_out (overwritten below): with the int row index converted in
+  // the main loop, GCC sized that loop's step by the int lanes (four rows with SSE2's two-double
+  // registers, twice the live values); now it works on doubles only. 0.5 m cones: 2-4 % faster
+  // on the AVX2 and AVX-512 paths, SSE2 unchanged (irgs_bench_mrpt_grid, 2026-12-04).
+  for (int i = 0; i < n; ++i)  // cellCentreCoordinate(row0 + i, res) - oy, rounded the same way.
+    free1_out[i] = (row0 + static_cast<double>(i) + 0.5) * res - oy;
   for (int i = 0; i < n; ++i) {
-    // cellCentreCoordinate(row0 + i, res) - oy, rounded the same way.
-    const double dy = (row0 + static_cast<double>(i) + 0.5) * res - oy;
+    const double dy = free1_out[i];
     const double dy2 = dy * dy;
     // Rows outside the outer disc are empty: |d|^2 >= dy^2 for every cell of the row.
     const bool in_outer = kArc ? dy2 <= outer2 : dy2 < outer2;
