@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -49,6 +50,11 @@ constexpr std::int16_t kUnobservedCell = std::numeric_limits<std::int16_t>::min(
 constexpr float kUnobservedLogOdds = std::numeric_limits<float>::quiet_NaN();
 constexpr auto kCellStep = static_cast<float>(OccupancyGrid::kLogOddsStep);  // exact: 2^-12
 constexpr int kTileMask = OccupancyGrid::kTileSize - 1;
+
+// A cell's log-odds, `unobserved` for a never-observed cell.
+inline float cellLogOdds(std::int16_t v, float unobserved) {
+  return v == kUnobservedCell ? unobserved : static_cast<float>(v) * kCellStep;
+}
 
 // The update of one cell: an unobserved cell starts from 0, then delta is added and the sum
 // clamped to [lo, hi] (all in cell steps, -32767 <= lo <= hi <= 32767, |delta| <= 32767). Every
@@ -172,15 +178,20 @@ std::optional<std::string> sonarInverseModelError(const SonarInverseModel& model
   const auto representable = [](double log_odds) {
     return std::abs(log_odds) <= OccupancyGrid::kMaxAbsLogOdds;
   };
+  // Formatted only for an error: checkedCone asks on every cone.
+  const auto within = [] {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(4) << "within +-" << OccupancyGrid::kMaxAbsLogOdds
+         << " (the grid's 16-bit cells)";
+    return text.str();
+  };
   if (!representable(model.free_log_odds) || !representable(model.occupied_log_odds))
-    return "free_log_odds and occupied_log_odds must be finite and within +-7.9998 (the grid's "
-           "16-bit cells)";
+    return "free_log_odds and occupied_log_odds must be finite and " + within();
   if (!std::isfinite(model.arc_thickness_m) || model.arc_thickness_m < 0.0)
     return "arc_thickness_m must be finite and >= 0";
   if (!representable(model.clamp_min) || !representable(model.clamp_max) ||
       model.clamp_min > model.clamp_max)
-    return "clamp_min and clamp_max must be finite, within +-7.9998 (the grid's 16-bit cells), "
-           "with clamp_min <= clamp_max";
+    return "clamp_min and clamp_max must be finite, " + within() + ", with clamp_min <= clamp_max";
   if (std::isnan(model.no_echo_free_range_m) || model.no_echo_free_range_m < 0.0)
     return "no_echo_free_range_m must be >= 0";
   return std::nullopt;
@@ -352,7 +363,7 @@ float OccupancyGrid::logOdds(const Cell& c) const {
   if (tile == nullptr)
     return 0.0f;
   const std::int16_t v = tile[(c.row & kTileMask) * kTileSize + (c.col & kTileMask)];
-  return v == kUnobservedCell ? 0.0f : static_cast<float>(v) * kCellStep;
+  return cellLogOdds(v, 0.0f);
 }
 
 double OccupancyGrid::probability(const Cell& c) const {
@@ -1021,8 +1032,7 @@ void OccupancyGrid::copyLogOdds(const CellRect& rect, std::vector<float>& out) c
         float* dst = out.data() + static_cast<std::size_t>(r - rect.row0) * width +
                      static_cast<std::size_t>(c0 - rect.col0);
         for (int i = 0; i < n; ++i)
-          dst[i] = src[i] == kUnobservedCell ? kUnobservedLogOdds
-                                             : static_cast<float>(src[i]) * kCellStep;
+          dst[i] = cellLogOdds(src[i], kUnobservedLogOdds);
       }
     }
   }
