@@ -14,6 +14,7 @@ namespace irgs {
 namespace {
 
 constexpr double kApproachLimit_m = 0.8;  // drive at most this far toward a suspected obstacle
+constexpr double kEscapeTurn_rad = degToRad(30.0);  // an escape ladder turn (escape_ladder.hpp)
 constexpr double kApproachSpeed_mps = 0.15;
 constexpr double kExploreFree = 0.3;  // long-range knowledge grid: free below this probability
 // Wall landmarks (position revision): a later fit must overlap one by this much along the wall,
@@ -896,13 +897,14 @@ void MapBuildingBehaviour::rangeToRoomWalls(const TelemetrySample& sample) {
   }
 }
 
-// A turn or back-up of the behaviour's own (interior exploration) that is blocked — in contact
-// for the wall follower's blocked_s, the wheels stalled — would wait forever for progress that
-// cannot come: a blocked turn backs up first, a blocked back-up gives up and re-plans.
+// A move of the behaviour's own (interior exploration) that is blocked — in contact for the wall
+// follower's blocked_s, the wheels stalled — would wait forever for progress that cannot come:
+// the escape ladder picks the next move to try, and after it the behaviour re-plans.
 void MapBuildingBehaviour::escapeBlockedMove(const TelemetrySample& sample, const Pose2& pose) {
-  const bool turning_or_backing =
-      move_ == Move::kTurn || move_ == Move::kFaceObstacle || move_ == Move::kBackUp;
-  if (!inContact(sample) || !turning_or_backing) {
+  const bool turning =
+      move_ == Move::kTurn || move_ == Move::kFaceObstacle || move_ == Move::kEscapeTurn;
+  const bool escapable = turning || move_ == Move::kBackUp || move_ == Move::kCreep;
+  if (!inContact(sample) || !escapable) {
     contact_since_s_.reset();
     return;
   }
@@ -913,11 +915,23 @@ void MapBuildingBehaviour::escapeBlockedMove(const TelemetrySample& sample, cons
   if (sample.time_s - *contact_since_s_ < config_.follow.blocked_s)
     return;
   contact_since_s_.reset();
-  if (move_ == Move::kBackUp) {
-    move_ = Move::kNone;
-  } else {
-    move_ = Move::kBackUp;
-    move_start_ = pose.position();
+  move_start_ = pose.position();
+  turn_progress_ = {};
+  switch (escape_.next(turning)) {
+    case EscapeMove::kBackUp:
+      move_ = Move::kBackUp;
+      break;
+    case EscapeMove::kForward:
+      move_ = Move::kCreep;
+      break;
+    case EscapeMove::kTurn:
+      move_ = Move::kEscapeTurn;
+      move_heading_ = wrapAngle(pose.theta - kEscapeTurn_rad);
+      break;
+    case EscapeMove::kTurnOpposite:
+      move_ = Move::kEscapeTurn;
+      move_heading_ = wrapAngle(pose.theta + kEscapeTurn_rad);
+      break;
   }
 }
 
@@ -974,14 +988,17 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
   } else if (distance_m_ > config_.max_distance_m) {
     cmd = fail("distance budget of " + std::to_string(static_cast<int>(config_.max_distance_m)) +
                " m used up in phase '" + std::string(toString(phase_)) + "'");
-  } else if (move_ == Move::kTurn || move_ == Move::kFaceObstacle) {
+  } else if (move_ == Move::kTurn || move_ == Move::kFaceObstacle || move_ == Move::kEscapeTurn) {
     const TurnStep turn =
         turnStep(turn_progress_, pose.theta, move_heading_, sample.measured_velocity.angular_radps,
                  config_.follow.turn_rate_radps);
     if (turn.done) {
       turn_progress_ = {};  // the next turn starts afresh, even toward the same heading
       view_.forgetBefore(sample.time_s);
-      if (phase_ == MapBuildingPhase::kSeekWall) {
+      escape_.reset();  // a completed turn: the body is free again
+      if (move_ == Move::kEscapeTurn) {
+        move_ = Move::kNone;
+      } else if (phase_ == MapBuildingPhase::kSeekWall) {
         cmd = startFollowing(pose, MapBuildingPhase::kSeekWall);
       } else if (move_ == Move::kFaceObstacle) {
         move_ = Move::kApproach;
@@ -996,11 +1013,12 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
     } else {
       cmd = {0.0, turn.angular_radps};
     }
-  } else if (move_ == Move::kBackUp) {
+  } else if (move_ == Move::kBackUp || move_ == Move::kCreep) {
+    const double speed = move_ == Move::kBackUp ? -0.1 : 0.1;
     if ((pose.position() - move_start_).norm() > 0.1)
       move_ = Move::kNone;
     else
-      cmd = {-0.1, 0.0};
+      cmd = {speed, 0.0};
   } else if (move_ == Move::kPause) {
     if (sample.time_s >= pause_until_s_) {
       move_ = Move::kNone;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/behaviour/behaviour.hpp"
+#include "core/behaviour/escape_ladder.hpp"
 #include "core/behaviour/motion.hpp"
 #include "core/behaviour/sonar_view.hpp"
 #include "core/behaviour/wall_follower.hpp"
@@ -156,7 +157,19 @@ class MapBuildingBehaviour : public Behaviour {
   double learnedTurnScaleError() const { return turn_scale_error_; }
 
  private:
-  enum class Move { kNone, kTurn, kDrive, kFaceObstacle, kApproach, kBackUp, kPause };
+  // kCreep and kEscapeTurn are escape moves (escapeBlockedMove); after them the behaviour
+  // re-plans from where the body got free.
+  enum class Move {
+    kNone,
+    kTurn,
+    kDrive,
+    kFaceObstacle,
+    kApproach,
+    kBackUp,
+    kCreep,
+    kEscapeTurn,
+    kPause
+  };
   struct Target {
     Vec2 position = Vec2::Zero();
     bool obstacle = false;
@@ -256,7 +269,8 @@ class MapBuildingBehaviour : public Behaviour {
 
   // Interior moves.
   Move move_ = Move::kNone;
-  TurnProgress turn_progress_;             // of the kTurn / kFaceObstacle move
+  TurnProgress turn_progress_;  // of the kTurn / kFaceObstacle move
+  EscapeLadder escape_;
   std::optional<double> contact_since_s_;  // in contact during a turn or back-up, since
   double move_heading_ = 0.0;
   Vec2 move_start_ = Vec2::Zero();

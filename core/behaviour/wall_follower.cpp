@@ -46,6 +46,8 @@ std::string_view toString(WallFollowMode mode) {
       return "reacquire wall";
     case WallFollowMode::kBackUp:
       return "back up";
+    case WallFollowMode::kEscapeForward:
+      return "escape forward";
     case WallFollowMode::kLost:
       return "lost";
   }
@@ -67,6 +69,34 @@ void WallFollower::restart() {
   view_.forgetBefore(now_s_);
   lost_count_ = skew_count_ = reacquire_turns_ = 0;
   have_pose_ = false;
+}
+
+void WallFollower::startStraight(WallFollowMode mode, const Pose2& pose) {
+  mode_ = mode;
+  leg_start_ = pose.position();
+  hold_heading_ = pose.theta;
+}
+
+VelocityCommand WallFollower::escapeBlocked(const Pose2& pose) {
+  const EscapeMove move = escape_.next(mode_ == WallFollowMode::kTurn);
+  ++bumps_;
+  switch (move) {
+    case EscapeMove::kBackUp:
+      startStraight(WallFollowMode::kBackUp, pose);
+      message_ = "blocked: back up";
+      return {-0.5 * config_.speed_mps, 0.0};
+    case EscapeMove::kTurn:
+      message_ = "blocked: turn away";
+      return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
+    case EscapeMove::kForward:
+      startStraight(WallFollowMode::kEscapeForward, pose);
+      message_ = "blocked: creep forward";
+      return {0.5 * config_.speed_mps, 0.0};
+    case EscapeMove::kTurnOpposite:
+      break;
+  }
+  message_ = "blocked: turn toward the wall side";
+  return startTurn(side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
 }
 
 void WallFollower::setWallOnLeft(bool on_left) {
@@ -191,32 +221,23 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
   last_pose_ = pose;
   have_pose_ = true;
 
-  if (inContact(sample) && mode_ != WallFollowMode::kBackUp && mode_ != WallFollowMode::kTurn) {
+  const auto escaping = [this] {
+    return mode_ == WallFollowMode::kBackUp || mode_ == WallFollowMode::kTurn ||
+           mode_ == WallFollowMode::kEscapeForward;
+  };
+  if (inContact(sample) && !escaping()) {
     ++bumps_;
-    mode_ = WallFollowMode::kBackUp;
-    leg_start_ = pose.position();
-    hold_heading_ = pose.theta;
+    startStraight(WallFollowMode::kBackUp, pose);
     message_ = "bumper: back up";
   }
-  // A turn or a back-up that is blocked would wait forever for progress that cannot come.
-  const bool turning_or_backing =
-      mode_ == WallFollowMode::kBackUp || mode_ == WallFollowMode::kTurn;
-  if (!inContact(sample) || !turning_or_backing) {
+  // A turn or a straight escape that is blocked would wait forever for progress that cannot come.
+  if (!inContact(sample) || !escaping()) {
     contact_since_s_.reset();
   } else if (!contact_since_s_) {
     contact_since_s_ = sample.time_s;
   } else if (sample.time_s - *contact_since_s_ >= config_.blocked_s) {
     contact_since_s_.reset();
-    ++bumps_;
-    if (mode_ == WallFollowMode::kTurn) {
-      mode_ = WallFollowMode::kBackUp;
-      leg_start_ = pose.position();
-      hold_heading_ = pose.theta;
-      message_ = "blocked while turning: back up";
-    } else {
-      message_ = "blocked while backing up: turn away";
-      return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
-    }
+    return escapeBlocked(pose);
   }
 
   const auto front = view_.frontDistance();
@@ -230,6 +251,7 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
         return {0.0, turn.angular_radps};
       }
       mode_ = next_mode_;
+      escape_.reset();                    // a completed turn: the body is free again
       view_.forgetBefore(sample.time_s);  // readings taken while turning look elsewhere
       leg_start_ = pose.position();
       hold_heading_ = pose.theta;
@@ -238,6 +260,13 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
       if ((pose.position() - leg_start_).norm() >= config_.back_up_m)
         return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
       return {-0.5 * config_.speed_mps, 0.0};
+    case WallFollowMode::kEscapeForward:
+      // Whatever wedged the body is behind it now: look for the wall again from here.
+      if ((pose.position() - leg_start_).norm() >= config_.back_up_m) {
+        startStraight(WallFollowMode::kReacquire, pose);
+        return straightCommand(pose.theta, hold_heading_, config_.speed_mps);
+      }
+      return {0.5 * config_.speed_mps, 0.0};
     case WallFollowMode::kSeek:
     case WallFollowMode::kLost: {
       if (wall_ahead)

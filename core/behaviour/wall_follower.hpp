@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "core/behaviour/behaviour.hpp"
+#include "core/behaviour/escape_ladder.hpp"
 #include "core/behaviour/motion.hpp"
 #include "core/behaviour/sonar_view.hpp"
 #include "core/robot/robot_profile.hpp"
@@ -32,7 +33,8 @@ struct WallFollowConfig {
   double heading_gain = 2.0;                 // omega = gain * heading error (1/s)
   double back_up_m = 0.08;                   // after a bumper hit
   // In contact this long while turning or backing up: the body is blocked (a corner on an
-  // obstacle, the wheels stalled); back up instead of turning, or turn instead of backing up.
+  // obstacle, the wheels stalled). The escape ladder (escape_ladder.hpp) picks the next move:
+  // back up, turn away from the wall side, creep forward, turn toward it.
   double blocked_s = 1.0;
 };
 
@@ -40,7 +42,16 @@ struct WallFollowConfig {
 // the set distance, ...), or nothing.
 std::optional<std::string> wallFollowConfigError(const WallFollowConfig& config);
 
-enum class WallFollowMode { kSeek, kFollow, kTurn, kClear, kReacquire, kBackUp, kLost };
+enum class WallFollowMode {
+  kSeek,
+  kFollow,
+  kTurn,
+  kClear,
+  kReacquire,
+  kBackUp,
+  kEscapeForward,
+  kLost
+};
 std::string_view toString(WallFollowMode mode);
 
 class WallFollower : public Behaviour {
@@ -66,6 +77,7 @@ class WallFollower : public Behaviour {
   int parallelCorrections() const { return corrections_; }  // revision (c) turns
   int cornerTurns() const { return corner_turns_; }         // revisions (a) and (b)
   int bumps() const { return bumps_; }
+  int blockedEscapes() const { return escape_.climbed(); }  // blocked moves answered
   double distanceTravelled_m() const { return distance_m_; }
   // Wall angle relative to the heading (revision (c) right triangle) from the last step that
   // saw the wall with both side sonars, nullopt otherwise. CCW positive.
@@ -75,6 +87,9 @@ class WallFollower : public Behaviour {
   VelocityCommand startTurn(double turn_rad, WallFollowMode next, const Pose2& pose);
   VelocityCommand handleWallAhead(const Pose2& pose);
   VelocityCommand follow(const TelemetrySample& sample, const Pose2& pose);
+  // The next move of the escape ladder after the current move was blocked.
+  VelocityCommand escapeBlocked(const Pose2& pose);
+  void startStraight(WallFollowMode mode, const Pose2& pose);
 
   WallFollowConfig config_;
   SonarView view_;
@@ -94,6 +109,7 @@ class WallFollower : public Behaviour {
   int corrections_ = 0;
   int corner_turns_ = 0;
   int bumps_ = 0;
+  EscapeLadder escape_;
   double distance_m_ = 0.0;
   bool have_pose_ = false;
   Pose2 last_pose_;

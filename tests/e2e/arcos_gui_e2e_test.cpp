@@ -48,9 +48,10 @@ constexpr double kStopUpperBound_s = kWatchdog_s + 0.5;
 constexpr double kSipRate_hz = 10.0;  // arcos.sip_cycle_ms = 100
 constexpr double kSipRateTolerance_hz = 1.0;
 // Real time: about 10 s per metre of path on a quiet machine (100-140 s for 10.6-13.3 m on
-// 2026-12-03, before and after turnStep). Outliers: 6.7 min once (a full stdout pipe, fixed in
-// af87616) and one 500 s timeout with the test starved behind a parallel build, wheels stalled
-// against a wall in "follow wall": not explained yet (docs/decisions.md, on-the-spot turns).
+// 2026-12-03, before and after turnStep; 139 s / 14.2 m on 2026-12-04). Outliers: 6.7 min once
+// (a full stdout pipe, fixed in af87616) and 500 s timeouts under load with the wheels stalled,
+// once against a wall and once (CI) against the box: a rear corner wedged so that neither the
+// back-up nor the turn away could move, fixed by the escape ladder (docs/decisions.md).
 constexpr double kMapBuildingBudget_s = 500.0;
 
 // "status a=1 b=x" -> {a: 1, b: x}; empty when the line is not a status line.

@@ -5,12 +5,17 @@
 // deg/s and ROTVEL reports the measured one in 0.1 deg/s; a drive commanded but not moving for
 // 0.2 s reports a stall (the Pioneers have no bumper switches). In-process, by contrast, the
 // behaviour sees every 10 ms step and its answer applies at the next one.
+//
+// A loaded ground station (jitter_s > 0 or freeze_probability > 0): each answer is a further
+// uniform [0, jitter_s] late, and with freeze_probability per answer the station stalls for
+// 0.2-1 s, during which nothing it answers reaches the wheels; answers keep their order. Seeded.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <random>
 #include <vector>
 
 #include "core/behaviour/behaviour.hpp"
@@ -21,6 +26,9 @@ namespace irgs::test {
 struct SampledLink {
   double period_s = 0.1;
   double delay_s = 0.1;
+  double jitter_s = 0.0;
+  double freeze_probability = 0.0;
+  unsigned seed = 1;
 };
 
 struct SampledLinkRun {
@@ -32,6 +40,7 @@ struct SampledLinkRun {
   int turn_reversals = 0;
   int spot_turns = 0;                // runs of answers with v = 0 and some w != 0
   double longest_spot_turn_s = 0.0;  // the longest of them
+  double longest_stall_s = 0.0;      // the longest stretch with drive_stalled reported
 };
 
 inline double roundToWholeDegPerSecond(double w_radps) {
@@ -48,6 +57,10 @@ inline SampledLinkRun runOverSampledLink(Simulator& sim, Behaviour& behaviour,
     VelocityCommand command;
   };
   std::deque<Pending> pending;
+  std::mt19937 rng(link.seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  long frozen_until_step = 0;
+  long last_apply_step = 0;
   std::vector<std::optional<SonarReading>> latest(sim.profile().sonars.size());
   SampledLinkRun run;
   TelemetrySample step_sample;
@@ -84,9 +97,18 @@ inline SampledLinkRun runOverSampledLink(Simulator& sim, Behaviour& behaviour,
     sample.measured_velocity.angular_radps =
         degToRad(std::round(radToDeg(sample.measured_velocity.angular_radps) * 10.0) / 10.0);
     sample.drive_stalled = stalled_s > 0.2;
+    run.longest_stall_s = std::max(run.longest_stall_s, stalled_s);
     VelocityCommand answer = behaviour.onSample(sample);
     answer.angular_radps = roundToWholeDegPerSecond(answer.angular_radps);
-    pending.push_back({step + std::max<long>(1, delay_steps), answer});
+    long apply_step = step + std::max<long>(1, delay_steps);
+    if (link.jitter_s > 0.0)
+      apply_step += std::lround(uniform(rng) * link.jitter_s / dt);
+    if (step >= frozen_until_step && link.freeze_probability > 0.0 &&
+        uniform(rng) < link.freeze_probability)
+      frozen_until_step = step + std::lround((0.2 + 0.8 * uniform(rng)) / dt);
+    apply_step = std::max({apply_step, frozen_until_step, last_apply_step});
+    last_apply_step = apply_step;
+    pending.push_back({apply_step, answer});
 
     const double t = sample.time_s;
     if (answer.linear_mps == 0.0) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/behaviour/escape_ladder.hpp"
 #include "core/scenario/behaviour_runner.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "tests/core/behaviour/behaviour_test_support.hpp"
@@ -114,6 +115,23 @@ TEST(WallFollower, TurnsOverATenHertzDelayedLinkWithoutHunting) {
   EXPECT_LT(run.longest_spot_turn_s, 5.0);
   EXPECT_LE(run.turn_reversals, follower.turnCount());  // at most one overshoot per turn
   EXPECT_GT(follower.distanceTravelled_m(), 20.0);
+}
+
+TEST(EscapeLadder, AnswersTheBlockedMoveFirstThenTriesEveryMoveInTurnUntilATurnCompletes) {
+  EscapeLadder blocked_turn;
+  EXPECT_EQ(blocked_turn.next(true), EscapeMove::kBackUp);
+  // The back-up blocked too (a rear corner against the box): the next rungs, in order.
+  EXPECT_EQ(blocked_turn.next(false), EscapeMove::kTurn);
+  EXPECT_EQ(blocked_turn.next(true), EscapeMove::kForward);
+  EXPECT_EQ(blocked_turn.next(false), EscapeMove::kTurnOpposite);
+  EXPECT_EQ(blocked_turn.next(true), EscapeMove::kBackUp);  // round again, never stuck on two
+  EXPECT_EQ(blocked_turn.climbed(), 5);
+  blocked_turn.reset();
+  EXPECT_EQ(blocked_turn.next(false), EscapeMove::kTurn);  // a blocked back-up turns first
+
+  EscapeLadder blocked_back_up;
+  EXPECT_EQ(blocked_back_up.next(false), EscapeMove::kTurn);
+  EXPECT_EQ(blocked_back_up.next(true), EscapeMove::kForward);
 }
 
 }  // namespace
