@@ -81,7 +81,11 @@ struct Link::Impl : std::enable_shared_from_this<Link::Impl> {
   }
 
   void onBytes(std::span<const std::uint8_t> bytes) {
-    if (stopped)
+    // Closed: the transport closes on a handler of its own after close()'s, so a read that
+    // completes in between would be tapped and decoded after the owner took its last data
+    // (LinkedRobot::finish) — a recording would then hold bytes the live session never used
+    // (a re-run found one sample more than the live map had, on a loaded machine).
+    if (stopped || !started)
       return;
     const double t = now();
     if (config.tap)

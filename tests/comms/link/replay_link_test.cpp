@@ -10,12 +10,15 @@
 #include "tests/comms/link/link_test_support.hpp"
 
 #include <gtest/gtest.h>
+#include <boost/asio/post.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <future>
 #include <mutex>
+#include <thread>
 #include <vector>
 
 namespace irgs::comms {
@@ -143,6 +146,42 @@ TEST(ReplayLink, ARebuiltLinkTakesOverTheFeed) {
   feed->push(stream);
   ASSERT_TRUE(second_seen.waitFor([&] { return second_seen.frame_sequences.size() == 10; }));
   EXPECT_EQ(first_seen.frame_sequences.size(), 10u);
+}
+
+TEST(ReplayLink, BytesReadAfterCloseAreNeitherTappedNorDecoded) {
+  // close() closes the transport on a handler of its own: a read completing in between used to be
+  // tapped and decoded after the owner had taken its last data (LinkedRobot::finish), so a
+  // recording held a sample the live map never had. On the io thread: close, then a chunk that
+  // the still-open transport delivers before its close handler runs.
+  IoThread io;
+  auto feed = std::make_shared<ReplayFeed>();
+  Seen seen;
+  LinkResult made = Link::create(io, LinkUrl{}, replayConfig(feed, seen), frameCollector(seen));
+  ASSERT_TRUE(made.link) << made.error;
+  made.link->open();
+  const std::vector<std::uint8_t> stream = heartbeatStream();
+  feed->push(stream);
+  ASSERT_TRUE(seen.waitFor([&] { return seen.frame_sequences.size() == 10; }));
+
+  std::promise<void> pushed;
+  boost::asio::post(io.context(), [&] {
+    made.link->close();
+    feed->push(stream);
+    pushed.set_value();
+  });
+  pushed.get_future().wait();
+  // The chunk's own handler (posted by push) is in the queue: poll for it (nothing notifies).
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (feed->deliveredBytes() + feed->droppedBytes() < 2 * stream.size() &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::promise<void> drained;  // every handler posted so far has run
+  boost::asio::post(io.context(), [&] { drained.set_value(); });
+  drained.get_future().wait();
+  EXPECT_EQ(feed->deliveredBytes(), 2 * stream.size()) << "the chunk did reach the link";
+  const std::lock_guard lock(seen.mutex);
+  EXPECT_EQ(seen.frame_sequences.size(), 10u);
+  EXPECT_EQ(seen.tapped_rx.size(), stream.size());  // the first stream only
 }
 
 TEST(ReplayLink, AReplayTransportMakerNeedsAFeed) {
