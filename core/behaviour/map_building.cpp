@@ -995,7 +995,10 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
     if (turn.done) {
       turn_progress_ = {};  // the next turn starts afresh, even toward the same heading
       view_.forgetBefore(sample.time_s);
-      escape_.reset();  // a completed turn: the body is free again
+      // A turn of the plan's completed: the body is free again. An escape turn does not count
+      // (free to turn is not free to go): if the next move blocks too, the ladder climbs on.
+      if (move_ != Move::kEscapeTurn)
+        escape_.reset();
       if (move_ == Move::kEscapeTurn) {
         move_ = Move::kNone;
       } else if (phase_ == MapBuildingPhase::kSeekWall) {
@@ -1015,10 +1018,12 @@ VelocityCommand MapBuildingBehaviour::onSample(const TelemetrySample& raw) {
     }
   } else if (move_ == Move::kBackUp || move_ == Move::kCreep) {
     const double speed = move_ == Move::kBackUp ? -0.1 : 0.1;
-    if ((pose.position() - move_start_).norm() > 0.1)
+    if ((pose.position() - move_start_).norm() > 0.1) {
       move_ = Move::kNone;
-    else
+      escape_.reset();  // 10 cm driven: out of the pocket
+    } else {
       cmd = {speed, 0.0};
+    }
   } else if (move_ == Move::kPause) {
     if (sample.time_s >= pause_until_s_) {
       move_ = Move::kNone;

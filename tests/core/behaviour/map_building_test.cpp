@@ -359,5 +359,31 @@ TEST(MapBuilding, BuildsTheArenaOverALoadedStationsLinkWithoutWedgingAgainstTheB
   }
 }
 
+TEST(MapBuilding, AnInteriorPocketWhereOnlyTurningIsFreeDoesNotLivelock) {
+  // One run of a 200-seed sweep of that loaded link: exploring the interior, the AmigoBot ended in
+  // the pocket between the arena's right wall and the 45-degree cut, where it could turn through
+  // 65-113 degrees but not drive. Its planned turn (past 113) blocked, the back-up blocked, the
+  // escape turn the other way completed, that reset the ladder and the plan turned it back into
+  // the block: for good (3000 s). Only driving 10 cm or a turn of the plan's own now resets it.
+  const WorldMap map = test::loadBundledMap("thesis_arena_250");
+  auto loaded =
+      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_amigo.json");
+  ASSERT_TRUE(loaded.profile);
+  MapBuildingBehaviour behaviour(*loaded.profile);
+  SimConfig sim_config = typicalSimConfig();
+  sim_config.seed = 166;
+  Simulator sim(map, *loaded.profile, sim_config);
+  sim.resetPose(map.start);
+  test::SampledLink link;
+  link.jitter_s = 0.3;
+  link.freeze_probability = 0.05;
+  link.seed = 1166;
+  const test::SampledLinkRun run = test::runOverSampledLink(sim, behaviour, link, 900.0);
+  ASSERT_TRUE(run.finished) << "still in '" << behaviour.status().phase << "' after " << run.time_s
+                            << " s";
+  EXPECT_FALSE(run.failed) << behaviour.status().message;
+  std::printf("%.1f s, longest stall %.1f s\n", run.time_s, run.longest_stall_s);
+}
+
 }  // namespace
 }  // namespace irgs
