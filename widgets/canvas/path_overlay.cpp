@@ -6,9 +6,11 @@
 #include <QPainter>
 #include <QPainterPath>
 #include <cmath>
+#include <vector>
 
 #include "widgets/canvas/canvas_palette.hpp"
 #include "widgets/canvas/finite_geometry.hpp"
+#include "widgets/canvas/label_placement.hpp"
 
 namespace irgs::widgets {
 namespace {
@@ -39,14 +41,18 @@ QPainterPath polylinePath(const MapView& view, const std::vector<Vec2>& points) 
   return path;
 }
 
-void drawLabel(QPainter& p, const QPointF& at, const QString& text, const QColor& colour) {
+// Draws `text` beside `at`, clear of the rectangles in `taken` where it can be (placeLabel), and
+// adds its own rectangle to them.
+void drawLabel(QPainter& p, const QPointF& at, const QString& text, const QColor& colour,
+               std::vector<QRectF>& taken) {
   QFont font = p.font();
   font.setPointSizeF(7.5);
   font.setBold(true);
   p.setFont(font);
   const QFontMetricsF metrics(font);
   const QRectF box = metrics.boundingRect(text).adjusted(-2.5, -1, 2.5, 1);
-  const QRectF placed = box.translated(at + QPointF(6.0, -6.0) - box.bottomLeft());
+  const QRectF placed = placeLabel(box, at, taken);
+  taken.push_back(placed);
   p.setPen(Qt::NoPen);
   p.setBrush(QColor(255, 255, 255, 215));
   p.drawRoundedRect(placed, 3, 3);
@@ -69,6 +75,7 @@ void paintGoal(QPainter& p, const QPointF& g) {
 }  // namespace
 
 void paintPlanningOverlay(QPainter& p, const MapView& view, const PlanningOverlay& overlay) {
+  std::vector<QRectF> labels;  // drawn so far: later labels keep clear of them
   p.save();
   p.setRenderHint(QPainter::Antialiasing, true);
 
@@ -106,7 +113,7 @@ void paintPlanningOverlay(QPainter& p, const MapView& view, const PlanningOverla
       p.setBrush(reached ? kReachedColour : QColor(Qt::white));
       p.drawEllipse(q, 4.5, 4.5);
       if (!last_label || QLineF(*last_label, q).length() >= kLabelSpacing_px) {
-        drawLabel(p, q, QString::number(i), kAmendedColour);
+        drawLabel(p, q, QString::number(i), kAmendedColour, labels);
         last_label = q;
       }
     }
@@ -135,7 +142,7 @@ void paintPlanningOverlay(QPainter& p, const MapView& view, const PlanningOverla
     p.setPen(palette::cosmeticPen(Qt::white, 1.0));
     p.setBrush(kIndexColour);
     p.drawPolygon(diamond);
-    drawLabel(p, q, QString::number(i + 1), kIndexColour);
+    drawLabel(p, q, QString::number(i + 1), kIndexColour, labels);
   }
 
   if (overlay.goal && finite(*overlay.goal))
@@ -155,7 +162,8 @@ void paintRegionRubberBand(QPainter& p, const MapView& view, const Vec2& a, cons
   const QString size = QStringLiteral("%1 × %2 m")
                            .arg(std::abs(b.x() - a.x()), 0, 'f', 2)
                            .arg(std::abs(b.y() - a.y()), 0, 'f', 2);
-  drawLabel(p, r.topRight(), size, kRegionOutline);
+  std::vector<QRectF> labels;
+  drawLabel(p, r.topRight(), size, kRegionOutline, labels);
   p.restore();
 }
 
