@@ -6,7 +6,12 @@
 // up nor turn one way — creeps forward or turns the other way instead of alternating between
 // the two blocked moves for good (seen over ARCOS: 500 s against a box, wheels stalled).
 
+#include "core/geometry/types.hpp"
+
 namespace irgs {
+
+// The on-the-spot turn of the turn rungs (and of the wall follower's turn away after a back-up).
+inline constexpr double kEscapeTurn_rad = degToRad(30.0);
 
 enum class EscapeMove { kBackUp, kTurn, kForward, kTurnOpposite };
 

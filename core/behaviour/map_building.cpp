@@ -14,7 +14,6 @@ namespace irgs {
 namespace {
 
 constexpr double kApproachLimit_m = 0.8;  // drive at most this far toward a suspected obstacle
-constexpr double kEscapeTurn_rad = degToRad(30.0);  // an escape ladder turn (escape_ladder.hpp)
 constexpr double kApproachSpeed_mps = 0.15;
 constexpr double kExploreFree = 0.3;  // long-range knowledge grid: free below this probability
 // Wall landmarks (position revision): a later fit must overlap one by this much along the wall,

@@ -87,7 +87,7 @@ VelocityCommand WallFollower::escapeBlocked(const Pose2& pose) {
       return {-0.5 * config_.speed_mps, 0.0};
     case EscapeMove::kTurn:
       message_ = "blocked: turn away";
-      return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
+      return startTurn(-side_sign_ * kEscapeTurn_rad, WallFollowMode::kReacquire, pose);
     case EscapeMove::kForward:
       startStraight(WallFollowMode::kEscapeForward, pose);
       message_ = "blocked: creep forward";
@@ -96,7 +96,7 @@ VelocityCommand WallFollower::escapeBlocked(const Pose2& pose) {
       break;
   }
   message_ = "blocked: turn toward the wall side";
-  return startTurn(side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
+  return startTurn(side_sign_ * kEscapeTurn_rad, WallFollowMode::kReacquire, pose);
 }
 
 void WallFollower::setWallOnLeft(bool on_left) {
@@ -258,7 +258,7 @@ VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
       return {};
     case WallFollowMode::kBackUp:
       if ((pose.position() - leg_start_).norm() >= config_.back_up_m)
-        return startTurn(-side_sign_ * degToRad(30.0), WallFollowMode::kReacquire, pose);
+        return startTurn(-side_sign_ * kEscapeTurn_rad, WallFollowMode::kReacquire, pose);
       return {-0.5 * config_.speed_mps, 0.0};
     case WallFollowMode::kEscapeForward:
       // Whatever wedged the body is behind it now: look for the wall again from here.

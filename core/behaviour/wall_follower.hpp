@@ -77,7 +77,6 @@ class WallFollower : public Behaviour {
   int parallelCorrections() const { return corrections_; }  // revision (c) turns
   int cornerTurns() const { return corner_turns_; }         // revisions (a) and (b)
   int bumps() const { return bumps_; }
-  int blockedEscapes() const { return escape_.climbed(); }  // blocked moves answered
   double distanceTravelled_m() const { return distance_m_; }
   // Wall angle relative to the heading (revision (c) right triangle) from the last step that
   // saw the wall with both side sonars, nullopt otherwise. CCW positive.

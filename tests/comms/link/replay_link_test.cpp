@@ -79,6 +79,19 @@ std::vector<std::uint8_t> heartbeatStream() {
   return stream;
 }
 
+// A link on `feed`, opened, that has taken in heartbeatStream() (frames 0..9 in `seen`).
+LinkResult linkThatHeardHeartbeats(IoThread& io, const std::shared_ptr<ReplayFeed>& feed,
+                                   Seen& seen) {
+  LinkResult made = Link::create(io, LinkUrl{}, replayConfig(feed, seen), frameCollector(seen));
+  if (!made.link)
+    return made;
+  made.link->open();
+  feed->push(heartbeatStream());
+  if (!seen.waitFor([&] { return seen.frame_sequences.size() == 10; }))
+    made.link.reset();
+  return made;
+}
+
 TEST(ReplayLink, PushedChunksAreDecodedInOrderAcrossChunkBoundariesAndTapped) {
   IoThread io;
   auto feed = std::make_shared<ReplayFeed>();
@@ -156,12 +169,9 @@ TEST(ReplayLink, BytesReadAfterCloseAreNeitherTappedNorDecoded) {
   IoThread io;
   auto feed = std::make_shared<ReplayFeed>();
   Seen seen;
-  LinkResult made = Link::create(io, LinkUrl{}, replayConfig(feed, seen), frameCollector(seen));
-  ASSERT_TRUE(made.link) << made.error;
-  made.link->open();
+  LinkResult made = linkThatHeardHeartbeats(io, feed, seen);
+  ASSERT_TRUE(made.link) << "no link, or it did not take in the heartbeats: " << made.error;
   const std::vector<std::uint8_t> stream = heartbeatStream();
-  feed->push(stream);
-  ASSERT_TRUE(seen.waitFor([&] { return seen.frame_sequences.size() == 10; }));
 
   std::promise<void> pushed;
   boost::asio::post(io.context(), [&] {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "core/mapping/map_score.hpp"
 #include "core/robot/robot_profile_file.hpp"
@@ -40,6 +41,25 @@ BuildRun build(const std::string& map_name, SimConfig sim, MapBuildingConfig con
   EXPECT_EQ(behaviour.phase(),
             run.result.behaviour.failed ? MapBuildingPhase::kFailed : MapBuildingPhase::kDone);
   return run;
+}
+
+// The AmigoBot of the ARCOS e2e test.
+RobotProfile amigoBot() {
+  auto loaded =
+      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_amigo.json");
+  if (!loaded.profile)
+    throw std::runtime_error("resources/robots/pioneer_amigo.json does not load");
+  return *loaded.profile;
+}
+
+// A loaded ground station's link (sampled_link.hpp): answers up to 0.3 s later than the 0.1 s
+// delay, and a 5 % chance per answer of a 0.2-1 s freeze.
+test::SampledLink loadedStationLink(unsigned seed) {
+  test::SampledLink link;
+  link.jitter_s = 0.3;
+  link.freeze_probability = 0.05;
+  link.seed = seed;
+  return link;
 }
 
 TEST(MapBuilding, BuildsTheThesisLoopClockwiseWithF1AboveNinety) {
@@ -330,10 +350,7 @@ TEST(MapBuilding, BuildsTheArenaOverALoadedStationsLinkWithoutWedgingAgainstTheB
   // here, at the box and at the outline). The escape ladder creeps forward or turns the other
   // way instead.
   const WorldMap map = test::loadBundledMap("thesis_arena_250");
-  auto loaded =
-      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_amigo.json");
-  ASSERT_TRUE(loaded.profile);
-  const RobotProfile robot = *loaded.profile;
+  const RobotProfile robot = amigoBot();
   for (unsigned seed = 0; seed < 12; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     MapBuildingBehaviour behaviour(robot);
@@ -341,11 +358,8 @@ TEST(MapBuilding, BuildsTheArenaOverALoadedStationsLinkWithoutWedgingAgainstTheB
     sim_config.seed = seed;
     Simulator sim(map, robot, sim_config);
     sim.resetPose(map.start);
-    test::SampledLink link;
-    link.jitter_s = 0.3;
-    link.freeze_probability = 0.05;
-    link.seed = seed;
-    const test::SampledLinkRun run = test::runOverSampledLink(sim, behaviour, link, 600.0);
+    const test::SampledLinkRun run =
+        test::runOverSampledLink(sim, behaviour, loadedStationLink(seed), 600.0);
     EXPECT_TRUE(run.finished) << "still in '" << behaviour.status().phase << "' ("
                               << behaviour.status().message << ") after " << run.time_s << " s";
     EXPECT_FALSE(run.failed) << behaviour.status().message;
@@ -367,19 +381,14 @@ TEST(MapBuilding, AnInteriorPocketWhereOnlyTurningIsFreeDoesNotLivelock) {
   // escape turn the other way completed, that reset the ladder and the plan turned it back into
   // the block: for good (3000 s). Only driving 10 cm or a turn of the plan's own now resets it.
   const WorldMap map = test::loadBundledMap("thesis_arena_250");
-  auto loaded =
-      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_amigo.json");
-  ASSERT_TRUE(loaded.profile);
-  MapBuildingBehaviour behaviour(*loaded.profile);
+  const RobotProfile robot = amigoBot();
+  MapBuildingBehaviour behaviour(robot);
   SimConfig sim_config = typicalSimConfig();
   sim_config.seed = 166;
-  Simulator sim(map, *loaded.profile, sim_config);
+  Simulator sim(map, robot, sim_config);
   sim.resetPose(map.start);
-  test::SampledLink link;
-  link.jitter_s = 0.3;
-  link.freeze_probability = 0.05;
-  link.seed = 1166;
-  const test::SampledLinkRun run = test::runOverSampledLink(sim, behaviour, link, 900.0);
+  const test::SampledLinkRun run =
+      test::runOverSampledLink(sim, behaviour, loadedStationLink(1166), 900.0);
   ASSERT_TRUE(run.finished) << "still in '" << behaviour.status().phase << "' after " << run.time_s
                             << " s";
   EXPECT_FALSE(run.failed) << behaviour.status().message;
@@ -391,22 +400,17 @@ TEST(MapBuilding, TwoHundredLoadedLinkRunsOnTheArenaAllFinishWithoutALongStall) 
   // default noise, link seed s + 1000, the loaded-station link of the test above, 900 s each.
   // Before the ladder 14 of these did not finish (stalls up to 827 s).
   const WorldMap map = test::loadBundledMap("thesis_arena_250");
-  auto loaded =
-      loadRobotProfileFile(std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_amigo.json");
-  ASSERT_TRUE(loaded.profile);
+  const RobotProfile robot = amigoBot();
   double longest_stall_s = 0.0, longest_run_s = 0.0, f1_sum = 0.0;
   int below_08 = 0;
   for (unsigned seed = 0; seed < 200; ++seed) {
-    MapBuildingBehaviour behaviour(*loaded.profile);
+    MapBuildingBehaviour behaviour(robot);
     SimConfig sim_config = typicalSimConfig();
     sim_config.seed = seed;
-    Simulator sim(map, *loaded.profile, sim_config);
+    Simulator sim(map, robot, sim_config);
     sim.resetPose(map.start);
-    test::SampledLink link;
-    link.jitter_s = 0.3;
-    link.freeze_probability = 0.05;
-    link.seed = seed + 1000;
-    const test::SampledLinkRun run = test::runOverSampledLink(sim, behaviour, link, 900.0);
+    const test::SampledLinkRun run =
+        test::runOverSampledLink(sim, behaviour, loadedStationLink(seed + 1000), 900.0);
     EXPECT_TRUE(run.finished && !run.failed)
         << "seed " << seed << ": '" << behaviour.status().phase << "' ("
         << behaviour.status().message << ") after " << run.time_s << " s";
