@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/robot/motion_control.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/robot/telemetry.hpp"
 
@@ -49,6 +50,8 @@ class Robot {
 
   // Present only when the ground station owns the robot's clock.
   virtual SimulationControl* simulationControl() { return nullptr; }
+  // Present when the robot runs motion primitives itself (motion_control.hpp).
+  virtual MotionControl* motionControl() { return nullptr; }
 };
 
 }  // namespace irgs
