@@ -6,8 +6,8 @@
 #include <queue>
 #include <stdexcept>
 
-#include "core/behaviour/motion.hpp"
-#include "core/behaviour/position_revision.hpp"
+#include "core/motion/turn_control.hpp"
+#include "core/motion/position_revision.hpp"
 #include "core/planning/path_amendment.hpp"
 
 namespace irgs {

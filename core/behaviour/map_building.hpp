@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "core/behaviour/behaviour.hpp"
-#include "core/behaviour/escape_ladder.hpp"
-#include "core/behaviour/motion.hpp"
+#include "core/motion/escape_ladder.hpp"
+#include "core/motion/turn_control.hpp"
 #include "core/behaviour/sonar_view.hpp"
 #include "core/behaviour/wall_follower.hpp"
 #include "core/mapping/occupancy_grid.hpp"

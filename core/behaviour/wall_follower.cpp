@@ -1,325 +1,75 @@
 #include "core/behaviour/wall_follower.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "core/behaviour/motion.hpp"
-#include "core/behaviour/position_revision.hpp"
+#include "core/motion/host_adapters.hpp"
 
 namespace irgs {
 
-std::optional<std::string> wallFollowConfigError(const WallFollowConfig& c) {
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(c.distance_m))
-    return "distance_m must be > 0";
-  if (!positive(c.speed_mps))
-    return "speed_mps must be > 0";
-  if (!positive(c.turn_rate_radps))
-    return "turn_rate_radps must be > 0";
-  if (!positive(c.valid_distance_m) || c.valid_distance_m <= c.distance_m)
-    return "valid_distance_m must be beyond distance_m";
-  if (!std::isfinite(c.turn_quantum_rad) || c.turn_quantum_rad < 0.0 ||
-      c.turn_quantum_rad > degToRad(90.0))
-    return "turn_quantum_rad must be in [0, 90 deg]";
-  if (!positive(c.parallel_threshold_rad))
-    return "parallel_threshold_rad must be > 0";
-  if (!positive(c.front_margin_m) || !positive(c.lost_margin_m) || !positive(c.back_up_m))
-    return "margins must be > 0";
-  if (!positive(c.distance_gain_rad_per_m) || !positive(c.max_approach_rad) ||
-      !positive(c.heading_gain))
-    return "gains must be > 0";
+std::optional<std::string> wallFollowConfigError(const WallFollowConfig& config) {
+  if (const char* problem = motion::wallFollowConfigProblem(config))
+    return std::string(problem);
   return std::nullopt;
 }
 
-std::string_view toString(WallFollowMode mode) {
-  switch (mode) {
-    case WallFollowMode::kSeek:
-      return "seek wall";
-    case WallFollowMode::kFollow:
-      return "follow wall";
-    case WallFollowMode::kTurn:
-      return "turn";
-    case WallFollowMode::kClear:
-      return "clear corner";
-    case WallFollowMode::kReacquire:
-      return "reacquire wall";
-    case WallFollowMode::kBackUp:
-      return "back up";
-    case WallFollowMode::kEscapeForward:
-      return "escape forward";
-    case WallFollowMode::kLost:
-      return "lost";
-  }
-  return "?";
-}
-
-WallFollower::WallFollower(const RobotProfile& profile, WallFollowConfig config)
-    : config_(config), view_(profile, config.valid_distance_m) {
-  if (const auto err = wallFollowConfigError(config_))
-    throw std::invalid_argument("WallFollowConfig: " + *err);
-  if (!view_.roles().canFollow(config_.wall_on_left))
-    throw std::invalid_argument("robot profile '" + profile.name +
-                                "' has no forward sonar and side sonar on the wall side");
-  side_sign_ = config_.wall_on_left ? 1.0 : -1.0;
-}
-
-void WallFollower::restart() {
-  mode_ = WallFollowMode::kSeek;
-  view_.forgetBefore(now_s_);
-  lost_count_ = skew_count_ = reacquire_turns_ = 0;
-  have_pose_ = false;
-}
-
-void WallFollower::startStraight(WallFollowMode mode, const Pose2& pose) {
-  mode_ = mode;
-  leg_start_ = pose.position();
-  hold_heading_ = pose.theta;
-}
-
-VelocityCommand WallFollower::escapeBlocked(const Pose2& pose) {
-  const EscapeMove move = escape_.next(mode_ == WallFollowMode::kTurn);
-  ++bumps_;
-  switch (move) {
-    case EscapeMove::kBackUp:
-      startStraight(WallFollowMode::kBackUp, pose);
-      message_ = "blocked: back up";
-      return {-0.5 * config_.speed_mps, 0.0};
-    case EscapeMove::kTurn:
-      message_ = "blocked: turn away";
-      return startTurn(-side_sign_ * kEscapeTurn_rad, WallFollowMode::kReacquire, pose);
-    case EscapeMove::kForward:
-      startStraight(WallFollowMode::kEscapeForward, pose);
-      message_ = "blocked: creep forward";
-      return {0.5 * config_.speed_mps, 0.0};
-    case EscapeMove::kTurnOpposite:
-      break;
-  }
-  message_ = "blocked: turn toward the wall side";
-  return startTurn(side_sign_ * kEscapeTurn_rad, WallFollowMode::kReacquire, pose);
-}
-
-void WallFollower::setWallOnLeft(bool on_left) {
-  if (!view_.roles().canFollow(on_left))
-    throw std::invalid_argument("robot profile has no side sonar on that side");
-  config_.wall_on_left = on_left;
-  side_sign_ = on_left ? 1.0 : -1.0;
-}
-
-VelocityCommand WallFollower::startTurn(double turn_rad, WallFollowMode next, const Pose2& pose) {
-  target_heading_ = wrapAngle(pose.theta + turn_rad);
-  next_mode_ = next;
-  mode_ = WallFollowMode::kTurn;
-  ++turns_;
-  turn_progress_ = {};
-  return {0.0, turnStep(turn_progress_, pose.theta, target_heading_, measured_rate_radps_,
-                        config_.turn_rate_radps)
-                   .angular_radps};
-}
-
-// (a) A wall ahead: turn by the front pair's right-triangle angle so the wall ends up on the
-// followed side, or by a quarter turn when the pair cannot see it.
-VelocityCommand WallFollower::handleWallAhead(const Pose2& pose) {
-  const SonarRoles& r = view_.roles();
-  std::optional<double> turn;
-  const auto dl = view_.range(r.front_left), dr = view_.range(r.front_right);
-  if (dl && dr)
-    turn =
-        frontWallTurn(*dl, *dr, r.front_baseline_m, config_.wall_on_left, config_.turn_quantum_rad);
-  double t = turn ? *turn : -side_sign_ * 0.5 * kPi;
-  // Never turn toward the wall side and never more than 135 degrees at once.
-  if (t * side_sign_ > 0.0)
-    t = -side_sign_ * 0.5 * kPi;
-  t = std::clamp(t, -degToRad(135.0), degToRad(135.0));
-  ++corner_turns_;
-  message_ = "wall ahead: turn " + std::to_string(static_cast<int>(std::lround(radToDeg(t)))) +
+std::string describe(motion::WallFollowEvent event, double turn_rad) {
+  using motion::WallFollowEvent;
+  switch (event) {
+    case WallFollowEvent::kWallAhead:
+      return "wall ahead: turn " +
+             std::to_string(static_cast<int>(std::lround(radToDeg(turn_rad)))) +
              " deg (revision a)";
-  return startTurn(t, WallFollowMode::kFollow, pose);
-}
-
-VelocityCommand WallFollower::follow(const TelemetrySample& sample, const Pose2& pose) {
-  const SonarRoles::SidePair& pair =
-      config_.wall_on_left ? view_.roles().left : view_.roles().right;
-  const double present_limit = config_.distance_m + config_.lost_margin_m;
-  auto df = view_.sideDistance(pair.front);
-  auto dr = view_.sideDistance(pair.rear);
-  if (df && *df > present_limit)
-    df.reset();
-  if (dr && *dr > present_limit)
-    dr.reset();
-  (void)sample;
-
-  if (!df) {
-    // (b) The wall ended ahead of the front side sonar: a convex corner (or a doorway). Two
-    // missing readings in a row, so a single dropout does not start a corner.
-    if (view_.updatedNow(pair.front))
-      ++lost_count_;
-    if (lost_count_ >= 2) {
-      lost_count_ = 0;
-      const auto& spec = view_.profile().sonars[static_cast<std::size_t>(pair.front)];
-      const double side_range = std::max(0.0, last_side_m_ - std::abs(spec.mount.y));
-      leg_length_m_ =
-          cornerClearance(spec.mount.x, side_range, 0.5 * spec.beam_width_rad, config_.distance_m);
-      leg_start_ = pose.position();
-      hold_heading_ = pose.theta;
-      mode_ = WallFollowMode::kClear;
-      message_ = "wall ended: clear the corner (revision b)";
-      return straightCommand(pose.theta, hold_heading_, config_.speed_mps);
-    }
-    return straightCommand(pose.theta, pose.theta, config_.speed_mps);
-  }
-  lost_count_ = 0;
-  reacquire_turns_ = 0;
-
-  double wall_angle = 0.0;
-  double distance = *df;
-  if (dr) {
-    wall_angle = sideWallAngle(*df, *dr, pair.baseline_m, config_.wall_on_left).value_or(0.0);
-    wall_angle_ = wall_angle;
-    distance = 0.5 * (*df + *dr) * std::cos(wall_angle);
-    // (c) Off parallel by the threshold or more on two fresh readings: stop and turn back.
-    if (view_.updatedNow(pair.front) || view_.updatedNow(pair.rear)) {
-      if (std::abs(wall_angle) >= config_.parallel_threshold_rad)
-        ++skew_count_;
-      else
-        skew_count_ = 0;
-    }
-    if (skew_count_ >= 2) {
-      skew_count_ = 0;
-      if (const auto turn = parallelCorrection(wall_angle, config_.parallel_threshold_rad,
-                                               config_.turn_quantum_rad)) {
-        ++corrections_;
-        message_ = "restore parallel (revision c)";
-        return startTurn(*turn, WallFollowMode::kFollow, pose);
-      }
-    }
-  }
-  last_side_m_ = *df;
-  // (d) Steer back toward the set distance, never steeper than max_approach_rad.
-  const double offset =
-      distanceKeepingOffset(distance, config_.distance_m, config_.valid_distance_m,
-                            config_.distance_gain_rad_per_m, config_.max_approach_rad);
-  const double heading_error = wall_angle + side_sign_ * offset;
-  const double w = std::clamp(config_.heading_gain * heading_error, -config_.turn_rate_radps,
-                              config_.turn_rate_radps);
-  const double v = config_.speed_mps * std::max(0.3, 1.0 - std::abs(heading_error));
-  return {v, w};
-}
-
-VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
-  now_s_ = sample.time_s;
-  measured_rate_radps_ = sample.measured_velocity.angular_radps;
-  wall_angle_.reset();
-  view_.update(sample);
-  const Pose2& pose = sample.odometry_pose;
-  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
-    message_ = "odometry pose not finite: stopped";
-    return {};
-  }
-  if (have_pose_)
-    distance_m_ += (pose.position() - last_pose_.position()).norm();
-  last_pose_ = pose;
-  have_pose_ = true;
-
-  const auto escaping = [this] {
-    return mode_ == WallFollowMode::kBackUp || mode_ == WallFollowMode::kTurn ||
-           mode_ == WallFollowMode::kEscapeForward;
-  };
-  if (inContact(sample) && !escaping()) {
-    ++bumps_;
-    startStraight(WallFollowMode::kBackUp, pose);
-    message_ = "bumper: back up";
-  }
-  // A turn or a straight escape that is blocked would wait forever for progress that cannot come.
-  if (!inContact(sample) || !escaping()) {
-    contact_since_s_.reset();
-  } else if (!contact_since_s_) {
-    contact_since_s_ = sample.time_s;
-  } else if (sample.time_s - *contact_since_s_ >= config_.blocked_s) {
-    contact_since_s_.reset();
-    return escapeBlocked(pose);
-  }
-
-  const auto front = view_.frontDistance();
-  const bool wall_ahead = front && *front < config_.distance_m + config_.front_margin_m;
-
-  switch (mode_) {
-    case WallFollowMode::kTurn:
-      if (const TurnStep turn = turnStep(turn_progress_, pose.theta, target_heading_,
-                                         measured_rate_radps_, config_.turn_rate_radps);
-          !turn.done) {
-        return {0.0, turn.angular_radps};
-      }
-      mode_ = next_mode_;
-      escape_.reset();                    // a completed turn: the body is free again
-      view_.forgetBefore(sample.time_s);  // readings taken while turning look elsewhere
-      leg_start_ = pose.position();
-      hold_heading_ = pose.theta;
-      return {};
-    case WallFollowMode::kBackUp:
-      if ((pose.position() - leg_start_).norm() >= config_.back_up_m)
-        return startTurn(-side_sign_ * kEscapeTurn_rad, WallFollowMode::kReacquire, pose);
-      return {-0.5 * config_.speed_mps, 0.0};
-    case WallFollowMode::kEscapeForward:
-      // Whatever wedged the body is behind it now: look for the wall again from here.
-      if ((pose.position() - leg_start_).norm() >= config_.back_up_m) {
-        startStraight(WallFollowMode::kReacquire, pose);
-        return straightCommand(pose.theta, hold_heading_, config_.speed_mps);
-      }
-      return {0.5 * config_.speed_mps, 0.0};
-    case WallFollowMode::kSeek:
-    case WallFollowMode::kLost: {
-      if (wall_ahead)
-        return handleWallAhead(pose);
-      const SonarRoles::SidePair& pair =
-          config_.wall_on_left ? view_.roles().left : view_.roles().right;
-      const auto df = view_.sideDistance(pair.front);
-      if (df && *df <= config_.distance_m + config_.lost_margin_m) {
-        mode_ = WallFollowMode::kFollow;
-        return follow(sample, pose);
-      }
-      return straightCommand(pose.theta, pose.theta, config_.speed_mps);
-    }
-    case WallFollowMode::kClear:
-      if (wall_ahead)
-        return handleWallAhead(pose);
-      if ((pose.position() - leg_start_).norm() >= leg_length_m_) {
-        ++corner_turns_;
-        return startTurn(side_sign_ * 0.5 * kPi, WallFollowMode::kReacquire, pose);
-      }
-      return straightCommand(pose.theta, hold_heading_, config_.speed_mps);
-    case WallFollowMode::kReacquire: {
-      if (wall_ahead)
-        return handleWallAhead(pose);
-      const SonarRoles::SidePair& pair =
-          config_.wall_on_left ? view_.roles().left : view_.roles().right;
-      const auto df = view_.sideDistance(pair.front);
-      if (df && *df <= config_.distance_m + config_.lost_margin_m) {
-        mode_ = WallFollowMode::kFollow;
-        return follow(sample, pose);
-      }
-      if ((pose.position() - leg_start_).norm() >= 2.0 * config_.distance_m + 0.05) {
-        if (++reacquire_turns_ >= 4) {
-          reacquire_turns_ = 0;
-          mode_ = WallFollowMode::kLost;
-          message_ = "wall lost: seeking";
-          return {};
-        }
-        return startTurn(side_sign_ * 0.5 * kPi, WallFollowMode::kReacquire, pose);
-      }
-      return straightCommand(pose.theta, hold_heading_, config_.speed_mps);
-    }
-    case WallFollowMode::kFollow:
-      if (wall_ahead)
-        return handleWallAhead(pose);
-      return follow(sample, pose);
+    case WallFollowEvent::kCornerClear:
+      return "wall ended: clear the corner (revision b)";
+    case WallFollowEvent::kRestoreParallel:
+      return "restore parallel (revision c)";
+    case WallFollowEvent::kLost:
+      return "wall lost: seeking";
+    case WallFollowEvent::kBumper:
+      return "bumper: back up";
+    case WallFollowEvent::kBlockedBackUp:
+      return "blocked: back up";
+    case WallFollowEvent::kBlockedTurnAway:
+      return "blocked: turn away";
+    case WallFollowEvent::kBlockedCreep:
+      return "blocked: creep forward";
+    case WallFollowEvent::kBlockedTurnToward:
+      return "blocked: turn toward the wall side";
+    case WallFollowEvent::kPoseNotFinite:
+      return "odometry pose not finite: stopped";
+    case WallFollowEvent::kNone:
+    case WallFollowEvent::kCornerTurn:
+      break;
   }
   return {};
 }
 
+WallFollower::WallFollower(const RobotProfile& profile, WallFollowConfig config)
+    : geometry_(std::make_unique<motion::MotionGeometry>(motion::motionGeometryOf(profile))) {
+  if (const auto err = wallFollowConfigError(config))
+    throw std::invalid_argument("WallFollowConfig: " + *err);
+  if (!motion::findSonarRoles(*geometry_).canFollow(config.wall_on_left))
+    throw std::invalid_argument("robot profile '" + profile.name +
+                                "' has no forward sonar and side sonar on the wall side");
+  control_ = std::make_unique<motion::WallFollowControl>(*geometry_, config);
+}
+
+void WallFollower::setWallOnLeft(bool on_left) {
+  if (!control_->setWallOnLeft(on_left))
+    throw std::invalid_argument("robot profile has no side sonar on that side");
+}
+
+VelocityCommand WallFollower::onSample(const TelemetrySample& sample) {
+  const VelocityCommand command = control_->step(motion::motionInputOf(sample));
+  if (std::string text = describe(control_->event(), control_->eventTurn_rad()); !text.empty())
+    message_ = std::move(text);
+  return command;
+}
+
 BehaviourStatus WallFollower::status() const {
   BehaviourStatus s;
-  s.phase = std::string(toString(mode_));
+  s.phase = motion::toString(control_->mode());
   s.message = message_;
   return s;
 }

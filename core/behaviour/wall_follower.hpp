@@ -1,58 +1,27 @@
 #pragma once
-// Wall following with the side sonars, as the thesis robot does it (003_…, digest 4.5-4.6):
-// drive with the chosen side parallel to the wall at a set distance; at a wall ahead stop and
-// turn by the front-sonar right-triangle angle in 15-degree quanta (revision (a)); when the wall
-// ends (convex corner) drive on until the body clears it and turn toward it (revision (b));
-// restore parallel with an on-the-spot quantised turn when the two side sonars show 15 degrees
-// or more (revision (c)); keep within the valid sonar distance, steering back when the wall
-// drifts away (revision (d)). All decisions use the odometry pose and the sonar readings only.
+// Wall following as a host Behaviour: the robot-side controller (core/motion/wall_follow.hpp,
+// thesis revisions (a)-(d)) fed one telemetry sample per step, with its events worded for the
+// console. In-process tools and the host map-building behaviour use it; a robot runs the same
+// controller itself as the FOLLOW_WALL primitive.
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "core/behaviour/behaviour.hpp"
-#include "core/behaviour/escape_ladder.hpp"
-#include "core/behaviour/motion.hpp"
-#include "core/behaviour/sonar_view.hpp"
+#include "core/motion/motion_geometry.hpp"
+#include "core/motion/wall_follow.hpp"
 #include "core/robot/robot_profile.hpp"
 
 namespace irgs {
 
-struct WallFollowConfig {
-  double distance_m = 0.3;  // body origin to wall, perpendicular
-  bool wall_on_left = false;
-  double speed_mps = 0.2;
-  double turn_rate_radps = degToRad(60.0);         // on-the-spot turns
-  double valid_distance_m = 1.0;                   // (d): readings beyond are not used
-  double turn_quantum_rad = degToRad(15.0);        // all on-the-spot turns are multiples of this
-  double parallel_threshold_rad = degToRad(15.0);  // (c): correct when off by this or more
-  double front_margin_m = 0.12;  // a wall ahead closer than distance_m + this stops the robot
-  double lost_margin_m = 0.3;    // a side wall farther than distance_m + this has ended
-  double distance_gain_rad_per_m = 2.0;      // (d) approach angle per metre of distance error
-  double max_approach_rad = degToRad(30.0);  // (d) steepest approach back to the set distance
-  double heading_gain = 2.0;                 // omega = gain * heading error (1/s)
-  double back_up_m = 0.08;                   // after a bumper hit
-  // In contact this long while turning or backing up: the body is blocked (a corner on an
-  // obstacle, the wheels stalled). The escape ladder (escape_ladder.hpp) picks the next move:
-  // back up, turn away from the wall side, creep forward, turn toward it.
-  double blocked_s = 1.0;
-};
+using WallFollowConfig = motion::WallFollowConfig;
+using WallFollowMode = motion::WallFollowMode;
 
 // What is wrong with the config (non-positive distances or speeds, valid distance not beyond
 // the set distance, ...), or nothing.
 std::optional<std::string> wallFollowConfigError(const WallFollowConfig& config);
-
-enum class WallFollowMode {
-  kSeek,
-  kFollow,
-  kTurn,
-  kClear,
-  kReacquire,
-  kBackUp,
-  kEscapeForward,
-  kLost
-};
-std::string_view toString(WallFollowMode mode);
 
 class WallFollower : public Behaviour {
  public:
@@ -65,58 +34,30 @@ class WallFollower : public Behaviour {
   std::string_view name() const override { return "wall follow"; }
 
   // Starts over in seek mode (drive straight until a wall), forgetting readings older than now.
-  void restart();
-  // Switches the followed side (used by map building: walls and obstacles on the left).
+  void restart() { control_->restart(); }
+  // Switches the followed side (used by map building: walls and obstacles on the left). Throws
+  // std::invalid_argument when that side has no sonar.
   void setWallOnLeft(bool on_left);
 
-  WallFollowMode mode() const { return mode_; }
+  WallFollowMode mode() const { return control_->mode(); }
   // True while the robot is following a wall it sees (not turning, seeking or reacquiring).
-  bool following() const { return mode_ == WallFollowMode::kFollow; }
-  const WallFollowConfig& config() const { return config_; }
-  int turnCount() const { return turns_; }                  // on-the-spot turns started
-  int parallelCorrections() const { return corrections_; }  // revision (c) turns
-  int cornerTurns() const { return corner_turns_; }         // revisions (a) and (b)
-  int bumps() const { return bumps_; }
-  double distanceTravelled_m() const { return distance_m_; }
-  // Wall angle relative to the heading (revision (c) right triangle) from the last step that
-  // saw the wall with both side sonars, nullopt otherwise. CCW positive.
-  std::optional<double> wallAngle() const { return wall_angle_; }
+  bool following() const { return control_->following(); }
+  const WallFollowConfig& config() const { return control_->config(); }
+  int turnCount() const { return control_->turnCount(); }
+  int parallelCorrections() const { return control_->parallelCorrections(); }
+  int cornerTurns() const { return control_->cornerTurns(); }
+  int bumps() const { return control_->bumps(); }
+  double distanceTravelled_m() const { return control_->distanceTravelled_m(); }
+  std::optional<double> wallAngle() const { return control_->wallAngle(); }
 
  private:
-  VelocityCommand startTurn(double turn_rad, WallFollowMode next, const Pose2& pose);
-  VelocityCommand handleWallAhead(const Pose2& pose);
-  VelocityCommand follow(const TelemetrySample& sample, const Pose2& pose);
-  // The next move of the escape ladder after the current move was blocked.
-  VelocityCommand escapeBlocked(const Pose2& pose);
-  void startStraight(WallFollowMode mode, const Pose2& pose);
-
-  WallFollowConfig config_;
-  SonarView view_;
-  double side_sign_ = -1.0;  // +1 wall on the left
-  WallFollowMode mode_ = WallFollowMode::kSeek;
-  WallFollowMode next_mode_ = WallFollowMode::kFollow;
-  double target_heading_ = 0.0;
-  TurnProgress turn_progress_;  // of the turn to target_heading_
-  double hold_heading_ = 0.0;
-  Vec2 leg_start_ = Vec2::Zero();
-  double leg_length_m_ = 0.0;
-  double last_side_m_ = 0.0;
-  int lost_count_ = 0;
-  int skew_count_ = 0;
-  int reacquire_turns_ = 0;
-  int turns_ = 0;
-  int corrections_ = 0;
-  int corner_turns_ = 0;
-  int bumps_ = 0;
-  EscapeLadder escape_;
-  double distance_m_ = 0.0;
-  bool have_pose_ = false;
-  Pose2 last_pose_;
-  double now_s_ = 0.0;
-  double measured_rate_radps_ = 0.0;  // the current sample's, for the turns started in this step
+  // The geometry lives on the heap so the controller's reference to it survives a move.
+  std::unique_ptr<motion::MotionGeometry> geometry_;
+  std::unique_ptr<motion::WallFollowControl> control_;
   std::string message_;
-  std::optional<double> wall_angle_;
-  std::optional<double> contact_since_s_;  // in contact while turning or backing up, since
 };
+
+// The console wording of a wall-follow event (empty for events that are not worded).
+std::string describe(motion::WallFollowEvent event, double turn_rad);
 
 }  // namespace irgs

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/motion/path_law.hpp"
 #include "core/sim/diff_drive.hpp"
 
 namespace irgs {
@@ -192,12 +193,10 @@ PathFollowOutput PathFollower::update(const Pose2& pose) {
     return out;
   }
   const double v = config_.speed_mps;
-  // (22) sdot = v cos(theta~) / (1 - c l)
-  out.sdot_mps = v * std::cos(e) / denominator;
-  // (25) with the Lyapunov law: feed-forward of the path's turn, then lateral and heading terms.
-  const double sinc_e = std::abs(e) < 1e-6 ? 1.0 : std::sin(e) / e;
-  const double omega =
-      c * out.sdot_mps - config_.k2 * v * l * sinc_e - config_.k3 * std::abs(v) * e;
+  // (22) and (25): feed-forward of the path's turn, then lateral and heading terms.
+  const motion::PathLawOutput law = motion::pathFollowingLaw(v, l, e, c, config_.k2, config_.k3);
+  out.sdot_mps = law.sdot_mps;
+  const double omega = law.omega_radps;
   out.command = {v, std::clamp(omega, -config_.max_turn_rate_radps, config_.max_turn_rate_radps)};
   out.status = PathFollowStatus::kFollowing;
   return out;

@@ -28,8 +28,8 @@ const char* toString(ReportKind kind) {
       return "turning point";
     case ReportKind::kDistanceMark:
       return "distance mark";
-    case ReportKind::kCornerTurn:
-      return "corner turn";
+    case ReportKind::kMode:
+      return "mode";
     case ReportKind::kWallLost:
       return "wall lost";
     case ReportKind::kFrontWall:
@@ -54,6 +54,8 @@ const char* toString(Reason reason) {
       return "invalid specification";
     case Reason::kUnsupported:
       return "not supported by this robot";
+    case Reason::kBumped:
+      return "bumped";
     case Reason::kBlocked:
       return "blocked";
     case Reason::kNoProgress:

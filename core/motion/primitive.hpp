@@ -109,10 +109,10 @@ enum class ReportKind : std::uint8_t {
   kRefused,       // not started (reason says why)
   kTurningPoint,  // segments/path: waypoint `index` reached
   kDistanceMark,  // follow wall: report_every_m more driven (distance_m = total)
-  kCornerTurn,    // follow wall: an on-the-spot turn (a), (b) or (c) started (index = which)
+  kMode,          // follow wall: the follower changed mode (index = motion::WallFollowMode)
+  kContact,       // follow wall: a bumper or a stall; the follower backs off and goes on
   kWallLost,      // follow wall: the side wall ended (stop_when_lost), or never found
   kFrontWall,     // a wall ahead ended it (drive/segments stop_at_wall, follow stop_at_front_wall)
-  kContact,       // a bumper or a stall interrupted it (the robot backed off or stopped)
   kDone,          // finished as asked
   kFailed,        // could not finish (reason says why)
   kCancelled,     // the host cancelled it, or a newer primitive replaced it
@@ -123,7 +123,8 @@ enum class Reason : std::uint8_t {
   kNone,
   kInvalid,      // a non-finite, out-of-range or empty specification
   kUnsupported,  // this robot cannot run this kind
-  kBlocked,      // in contact and the escape moves did not free it
+  kBumped,       // a bumper or a stall stopped a forward move
+  kBlocked,      // in contact for the blocked time while turning or backing up
   kNoProgress,   // the watchdog saw no progress (stuck against something the bumpers miss)
   kSafety,       // a safety stop (e-stop, ground station silent, bumper brake)
   kNoSensors,    // the sonars the primitive needs are missing

@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/behaviour/motion.hpp"
+#include "core/motion/turn_control.hpp"
 
 namespace irgs {
 

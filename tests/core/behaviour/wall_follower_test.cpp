@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/behaviour/escape_ladder.hpp"
+#include "core/motion/escape_ladder.hpp"
 #include "core/scenario/behaviour_runner.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "tests/core/behaviour/behaviour_test_support.hpp"

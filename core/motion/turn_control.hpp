@@ -1,6 +1,6 @@
 #pragma once
-// Motion primitives shared by the behaviours: on-the-spot turns to a heading and straight legs
-// with heading hold, on the odometry pose (what the robot believes), SI units.
+// Turn and heading-hold control laws of the motion primitives and the host behaviours: on-the-spot
+// turns to a heading and straight legs with heading hold, on the odometry pose, SI units.
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "core/behaviour/position_revision.hpp"
+#include "core/motion/position_revision.hpp"
 
 #include <algorithm>
 #include <cmath>

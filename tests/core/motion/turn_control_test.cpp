@@ -1,4 +1,4 @@
-#include "core/behaviour/motion.hpp"
+#include "core/motion/turn_control.hpp"
 
 #include <gtest/gtest.h>
 
