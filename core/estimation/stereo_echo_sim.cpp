@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/sim/geometry_queries.hpp"
+#include "core/geometry/geometry_queries.hpp"
 
 namespace irgs {
 

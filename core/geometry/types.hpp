@@ -64,6 +64,11 @@ struct Pose2 {
     const Vec2 p = toWorld({other.x, other.y});
     return {p.x(), p.y(), wrapAngle(theta + other.theta)};
   }
+  // ⊖this: the world origin seen from this pose, so that compose(inverse()) is the identity.
+  Pose2 inverse() const {
+    const Vec2 p = toBody(Vec2::Zero());
+    return {p.x(), p.y(), wrapAngle(-theta)};
+  }
 
   friend bool operator==(const Pose2&, const Pose2&) = default;
 };

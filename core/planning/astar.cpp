@@ -8,6 +8,8 @@
 #include <queue>
 #include <stdexcept>
 
+#include "core/planning/nearest_search.hpp"
+
 namespace irgs {
 namespace {
 
@@ -452,61 +454,13 @@ PlanResult planAStar(const PlanningGrid& grid, const Cell& start, const Cell& go
 }
 
 PlanResult dijkstraReference(const PlanningGrid& grid, const Cell& start, const Cell& goal) {
-  PlanResult result;
   if (const auto status = precheck(grid, start, goal, nullptr, 0)) {
+    PlanResult result;
     result.status = *status;
     return result;
   }
-  const std::size_t n = grid.cellCount();
-  constexpr std::uint64_t kInf = std::numeric_limits<std::uint64_t>::max();
-  std::vector<std::uint64_t> dist(n, kInf);
-  std::vector<std::size_t> parent(n, n);
-  std::vector<bool> done(n, false);
-  using Item = std::pair<std::uint64_t, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  const std::size_t s = grid.index(start), t = grid.index(goal);
-  dist[s] = 0;
-  queue.push({0, s});
-  while (!queue.empty()) {
-    const auto [d, i] = queue.top();
-    queue.pop();
-    if (done[i])
-      continue;
-    done[i] = true;
-    ++result.expansions;
-    if (i == t)
-      break;
-    const Cell c = grid.cellOf(i);
-    for (int dr = -1; dr <= 1; ++dr)
-      for (int dc = -1; dc <= 1; ++dc) {
-        if (dc == 0 && dr == 0)
-          continue;
-        const Cell m{c.col + dc, c.row + dr};
-        if (!grid.isFree(m))
-          continue;
-        if (dc != 0 && dr != 0 &&
-            (!grid.isFree({c.col + dc, c.row}) || !grid.isFree({c.col, c.row + dr})))
-          continue;
-        const std::size_t j = grid.index(m);
-        const std::uint64_t nd = d + (dc != 0 && dr != 0 ? kDiagonalCost : kStraightCost);
-        if (nd < dist[j]) {
-          dist[j] = nd;
-          parent[j] = i;
-          queue.push({nd, j});
-        }
-      }
-  }
-  if (dist[t] == kInf) {
-    result.status = PlanStatus::kNoPath;
-    return result;
-  }
-  result.status = PlanStatus::kFound;
-  result.cost = dist[t];
-  for (std::size_t i = t; i != n; i = parent[i])
-    result.cells.push_back(grid.cellOf(i));
-  std::reverse(result.cells.begin(), result.cells.end());
-  finishPlanResult(grid, result);
-  return result;
+  return planToNearest(
+      grid, start, [&goal](const Cell& c) { return c == goal; }, true);
 }
 
 }  // namespace irgs

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/geometry/geometry_queries.hpp"
 #include "core/planning/distance_transform.hpp"
 #include "core/planning/grid_line.hpp"
 
@@ -17,20 +18,6 @@ void requireValid(const PlanningGridOptions& options) {
 
 PlanningGrid finish(PlanningGrid grid, const PlanningGridOptions& options) {
   return inflate(grid, options.robot_radius_m);
-}
-
-// Even-odd point-in-polygon test (boundary cases go either way; cells on an obstacle's
-// outline are also covered by rasterising its edges).
-bool insidePolygon(const std::vector<Vec2>& poly, const Vec2& p) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
 }
 
 }  // namespace
@@ -186,7 +173,8 @@ PlanningGrid planningGridFromWorld(const WorldMap& map, double resolution_m,
       continue;
     for (int r = lo->row; r <= r1; ++r)
       for (int c = lo->col; c <= c1; ++c)
-        if (insidePolygon(o.polygon, g.cellCentre({c, r})))
+        // (cells on an obstacle's outline are also covered by rasterising its edges)
+        if (pointInPolygon(g.cellCentre({c, r}), o.polygon))
           g.setBlocked({c, r}, true);
   }
   return finish(std::move(g), options);

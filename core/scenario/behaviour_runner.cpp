@@ -5,6 +5,9 @@
 #include <stdexcept>
 
 #include "core/mapping/sonar_mapper.hpp"
+#include "core/mission/behaviour_mission.hpp"
+#include "core/mission/mission_runner.hpp"
+#include "core/sim/simulated_robot.hpp"
 
 namespace irgs {
 namespace {
@@ -16,39 +19,40 @@ double rounded(double v, int digits) {
 
 }  // namespace
 
-BehaviourScenarioResult runBehaviourScenario(const BehaviourScenarioSpec& spec,
-                                             Behaviour& behaviour) {
+BehaviourScenarioResult runMissionScenario(const BehaviourScenarioSpec& spec, Mission& mission) {
   if (!std::isfinite(spec.max_duration_s) || spec.max_duration_s <= 0.0)
     throw std::invalid_argument("max_duration_s must be finite and > 0");
   const double wall_start = spec.wall_clock ? spec.wall_clock() : 0.0;
-  WorldMap map = spec.map;
-  const Pose2 start = spec.start.value_or(map.start);
-  Simulator sim(std::move(map), spec.profile, spec.sim);
-  sim.resetPose(start);
+  SimulatedRobot robot(spec.map, spec.profile, spec.sim);
+  Simulator& sim = robot.simulator();
+  sim.resetPose(spec.start.value_or(spec.map.start));
 
   const SonarMapper mapper(spec.profile, spec.sonar_model);
   BehaviourScenarioResult out{{OccupancyGrid(spec.grid_resolution_m), {}, {}}, {}};
   ScenarioResult& result = out.scenario;
   ScenarioMetrics& m = result.metrics;
   BehaviourMetrics& b = out.behaviour;
-  b.behaviour = std::string(behaviour.name());
+  b.behaviour = std::string(mission.name());
 
+  MissionRunner runner;
+  if (auto refused = runner.start(mission, robot))
+    throw std::invalid_argument(*refused);
   const double dt = spec.sim.dt_s;
   const auto total_steps = static_cast<std::uint64_t>(std::llround(spec.max_duration_s / dt));
   const auto rows_every = std::max<std::uint64_t>(
       1, static_cast<std::uint64_t>(std::llround(spec.trajectory_period_s / dt)));
 
-  VelocityCommand command;
-  result.trajectory.push_back({0.0, sim.truePose(), sim.odometryPose(), command, 0});
+  result.trajectory.push_back({0.0, sim.truePose(), sim.odometryPose(), sim.command(), 0});
   std::uint32_t previous_bumpers = 0;
   Pose2 previous_truth = sim.truePose();
   bool was_turning = false;
   std::uint64_t step = 0;
-  TelemetrySample sample;
-  while (step < total_steps) {
+  bool finished = !runner.running();
+  while (step < total_steps && !finished) {
     ++step;
-    sim.setCommand(command);
-    sim.step(sample);
+    robot.singleStep();
+    const std::vector<TelemetrySample> samples = robot.update(0.0);
+    const TelemetrySample& sample = samples.back();
     mapper.integrate(sample, result.grid);
     for (const SonarReading& reading : sample.sonar) {
       ++m.sonar_readings;
@@ -63,38 +67,39 @@ BehaviourScenarioResult runBehaviourScenario(const BehaviourScenarioSpec& spec,
     m.rotation_travelled_rad += std::abs(wrapAngle(truth.theta - previous_truth.theta));
     previous_truth = truth;
 
-    command = behaviour.onSample(sample);
-    if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps))
-      command = {};  // a behaviour bug must not stop the simulator with an exception
+    runner.feed(samples);
+    // The command the next step runs: the primitive's (stepped at the start of the next step on
+    // this sample) or the mission's velocity.
+    const VelocityCommand& command = sim.command();
     const bool turning = command.linear_mps == 0.0 && command.angular_radps != 0.0;
     if (turning && !was_turning)
       ++b.turns;
     was_turning = turning;
 
-    const BehaviourStatus status = behaviour.status();
+    const BehaviourStatus status = runner.status();
     if (b.phases.empty() || b.phases.back().phase != status.phase)
       b.phases.push_back({status.phase, sample.time_s, sample.time_s});
     b.phases.back().end_s = sample.time_s;
     if (spec.observer)
-      spec.observer(sample, behaviour);
+      spec.observer(sample, mission);
     if (spec.simulator_probe)
       spec.simulator_probe(sim);
 
-    const bool finished = status.finished;
+    finished = !runner.running();
     if (step % rows_every == 0 || finished)
       result.trajectory.push_back(
           {sample.time_s, sim.truePose(), sim.odometryPose(), command, sample.bumpers});
-    if (finished) {
-      b.finished = true;
-      b.failed = status.failed;
-      b.message = status.message;
-      break;
-    }
   }
-  if (!b.finished) {
+  const BehaviourStatus status = runner.status();
+  b.primitives = runner.primitivesStarted();
+  if (finished) {
+    b.finished = true;
+    b.failed = status.failed;
+    b.message = status.message;
+  } else {
     b.failed = true;
     b.message = "time budget of " + std::to_string(spec.max_duration_s) +
-                " s used up before the behaviour finished (" + behaviour.status().phase + ")";
+                " s used up before the behaviour finished (" + status.phase + ")";
   }
 
   m.steps = step;
@@ -108,6 +113,12 @@ BehaviourScenarioResult runBehaviourScenario(const BehaviourScenarioSpec& spec,
   return out;
 }
 
+BehaviourScenarioResult runBehaviourScenario(const BehaviourScenarioSpec& spec,
+                                             Behaviour& behaviour) {
+  BehaviourMission mission(behaviour);
+  return runMissionScenario(spec, mission);
+}
+
 std::string behaviourMetricsJson(const BehaviourScenarioResult& result, const ScenarioRunInfo& info,
                                  const nlohmann::json& extra) {
   nlohmann::ordered_json doc =
@@ -119,6 +130,7 @@ std::string behaviourMetricsJson(const BehaviourScenarioResult& result, const Sc
   beh["failed"] = b.failed;
   beh["message"] = b.message;
   beh["turns"] = b.turns;
+  beh["primitives"] = b.primitives;
   beh["wall_clock_s"] = rounded(b.wall_clock_s, 3);
   nlohmann::ordered_json phases = nlohmann::ordered_json::array();
   for (const PhaseSpan& p : b.phases)

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/sim/geometry_queries.hpp"
+#include "core/geometry/geometry_queries.hpp"
 
 namespace irgs {
 

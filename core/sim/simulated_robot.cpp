@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include "core/motion/host_adapters.hpp"
 
 namespace irgs {
 
 SimulatedRobot::SimulatedRobot(WorldMap map, RobotProfile profile, SimConfig config)
-    : sim_(std::move(map), std::move(profile), config) {}
+    : sim_(std::move(map), std::move(profile), config),
+      executor_(
+          std::make_unique<motion::MotionExecutor>(motion::motionGeometryOf(sim_.profile()))) {
+  last_input_.time_s = sim_.time_s();
+  last_input_.odometry = sim_.odometryPose();
+}
 
 const RobotProfile& SimulatedRobot::profile() const {
   return sim_.profile();
@@ -18,17 +26,59 @@ std::string SimulatedRobot::describe() const {
 }
 
 void SimulatedRobot::drive(const VelocityCommand& command) {
+  executor_->cancel(last_input_);
   sim_.setCommand(command);
 }
 
 void SimulatedRobot::stop() {
+  executor_->cancel(last_input_);
   sim_.setCommand({});
+}
+
+void SimulatedRobot::start(const motion::Primitive& primitive) {
+  executor_->start(primitive, last_input_);
+}
+
+void SimulatedRobot::cancel() {
+  if (executor_->running())
+    sim_.setCommand({});
+  executor_->cancel(last_input_);
+}
+
+std::vector<motion::MotionReport> SimulatedRobot::takeReports() {
+  motion::MotionReport r;
+  while (executor_->popReport(r))
+    reports_.push_back(r);
+  return std::exchange(reports_, {});
+}
+
+void SimulatedRobot::setMotionSettings(const motion::MotionSettings& settings) {
+  executor_->setSettings(settings);
+}
+
+TelemetrySample SimulatedRobot::stepOnce() {
+  // A primitive that ends in this step stops the wheels; teleop is left alone otherwise (the
+  // idle executor still sees the step: its sonar memory stays current).
+  const bool running = executor_->running();
+  const VelocityCommand command = executor_->step(last_input_);
+  if (running)
+    sim_.setCommand(command);
+  TelemetrySample sample = sim_.step();
+  last_input_ = motion::motionInputOf(sample);
+  // Drained every step (the executor's queue is small); kept bounded for a host that never
+  // asks.
+  motion::MotionReport r;
+  while (executor_->popReport(r))
+    reports_.push_back(r);
+  if (reports_.size() > kMaxKeptReports)
+    reports_.erase(reports_.begin(), reports_.begin() + kMaxKeptReports / 2);
+  return sample;
 }
 
 void SimulatedRobot::runSteps(std::int64_t count, std::vector<TelemetrySample>& out) {
   out.reserve(out.size() + static_cast<std::size_t>(count));
   for (std::int64_t i = 0; i < count; ++i)
-    out.push_back(sim_.step());
+    out.push_back(stepOnce());
 }
 
 std::vector<TelemetrySample> SimulatedRobot::update(double wall_elapsed_s) {
@@ -74,7 +124,7 @@ double SimulatedRobot::speedFactor() const {
 }
 
 void SimulatedRobot::singleStep() {
-  pending_.push_back(sim_.step());
+  pending_.push_back(stepOnce());
 }
 
 void SimulatedRobot::setMaxStepsPerUpdate(int steps) {

@@ -12,20 +12,28 @@
 // run behaves as "max", the excess is dropped, not owed). Paused,
 // update() runs no steps; singleStep() runs exactly one, its sample returned by the next
 // update().
+//
+// Motion primitives (MotionControl): the robot runs them itself, as irgs-robot's firmware
+// does — one MotionExecutor step per simulator step on the previous step's telemetry, its
+// command applied to the next step. A host mission that wants to react before the next step
+// updates one step at a time. drive() (teleop) cancels a running primitive; stop() too.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/motion/motion_executor.hpp"
 #include "core/robot/robot.hpp"
 #include "core/sim/simulator.hpp"
 
 namespace irgs {
 
-class SimulatedRobot : public Robot, public SimulationControl {
+class SimulatedRobot : public Robot, public SimulationControl, public MotionControl {
  public:
   static constexpr int kDefaultMaxSteps = 1000;
   static constexpr double kMaxWallStep_s = 1.0;
+  static constexpr std::size_t kMaxKeptReports = 4096;  // untaken reports; older ones go
 
   SimulatedRobot(WorldMap map, RobotProfile profile, SimConfig config = {});
 
@@ -36,6 +44,15 @@ class SimulatedRobot : public Robot, public SimulationControl {
   void stop() override;
   std::vector<TelemetrySample> update(double wall_elapsed_s) override;
   SimulationControl* simulationControl() override { return this; }
+  MotionControl* motionControl() override { return this; }
+
+  // MotionControl
+  bool supports(motion::PrimitiveKind) const override { return true; }
+  void start(const motion::Primitive& primitive) override;
+  void cancel() override;
+  std::vector<motion::MotionReport> takeReports() override;
+  const motion::MotionExecutor& executor() const { return *executor_; }
+  void setMotionSettings(const motion::MotionSettings& settings);
 
   // SimulationControl
   void setPaused(bool paused) override;
@@ -57,8 +74,13 @@ class SimulatedRobot : public Robot, public SimulationControl {
 
  private:
   void runSteps(std::int64_t count, std::vector<TelemetrySample>& out);
+  TelemetrySample stepOnce();
 
   Simulator sim_;
+  // On the heap: the executor's primitives point into it, and the robot may be moved.
+  std::unique_ptr<motion::MotionExecutor> executor_;
+  motion::MotionInput last_input_;  // the newest step's, for the next executor step
+  std::vector<motion::MotionReport> reports_;
   bool paused_ = false;
   double speed_ = 1.0;
   int max_steps_ = kDefaultMaxSteps;

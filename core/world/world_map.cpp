@@ -4,31 +4,19 @@
 #include <cmath>
 #include <limits>
 
+#include "core/geometry/geometry_queries.hpp"
+
 namespace irgs {
 namespace {
 
-double distanceToSegment(const Vec2& p, const Segment& s) {
-  const Vec2 d = s.b - s.a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (s.a + t * d - p).norm();
-}
-
-bool pointInPolygon(const Vec2& p, const std::vector<Vec2>& polygon) {
-  const std::size_t n = polygon.size();
-  if (n < 3)
+// Inside or on the boundary.
+bool insideOrOnPolygon(const Vec2& p, const std::vector<Vec2>& polygon) {
+  if (polygon.size() < 3)
     return false;
-  bool inside = false;
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = polygon[i];
-    const Vec2& b = polygon[j];
-    if (distanceToSegment(p, {a, b}) <= 1e-12)
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+    if (pointSegmentDistance(p, polygon[i], polygon[j]) <= 1e-12)
       return true;
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-  }
-  return inside;
+  return pointInPolygon(p, polygon);
 }
 
 }  // namespace
@@ -129,7 +117,7 @@ Box2 WorldMap::bounds() const {
 
 const Obstacle* WorldMap::obstacleAt(const Vec2& p) const {
   for (const Obstacle& obstacle : obstacles) {
-    if (pointInPolygon(p, obstacle.polygon))
+    if (insideOrOnPolygon(p, obstacle.polygon))
       return &obstacle;
   }
   return nullptr;
@@ -138,7 +126,7 @@ const Obstacle* WorldMap::obstacleAt(const Vec2& p) const {
 double WorldMap::distanceToNearestSegment(const Vec2& p) const {
   double best = std::numeric_limits<double>::infinity();
   for (const Segment& s : segments())
-    best = std::min(best, distanceToSegment(p, s));
+    best = std::min(best, pointSegmentDistance(p, s.a, s.b));
   return best;
 }
 

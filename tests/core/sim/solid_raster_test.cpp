@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/sim/geometry_queries.hpp"
+#include "core/geometry/geometry_queries.hpp"
 #include "core/sim/random.hpp"
 
 namespace irgs {

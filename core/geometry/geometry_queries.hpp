@@ -1,6 +1,7 @@
 #pragma once
-// Small exact-as-floating-point predicates and distances used by the simulator's collision,
-// bumper and clearance queries. All inputs in world metres.
+// Small exact-as-floating-point predicates and distances on points, segments and polygons: the
+// one place for each of these facts (the simulator's collision, bumper and clearance queries,
+// map building's loops, the planners' rasterisation). All inputs in world metres.
 
 #include <span>
 
@@ -26,6 +27,11 @@ double pointBoxDistance(const Vec2& p, const Box2& box);
 bool polygonTouchesSegment(std::span<const Vec2> polygon, const Vec2& a, const Vec2& b);
 // True when the polygon and the closed box share a point.
 bool polygonTouchesBox(std::span<const Vec2> polygon, const Box2& box);
+
+// The signed area of the polygon (shoelace), > 0 counter-clockwise.
+double signedArea(std::span<const Vec2> polygon);
+// Distance from p to the closed polygon's boundary (edges, the last back to the first).
+double pointPolygonBoundaryDistance(const Vec2& p, std::span<const Vec2> polygon);
 
 // Box around the polygon's vertices.
 Box2 boundsOf(std::span<const Vec2> points);

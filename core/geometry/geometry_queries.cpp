@@ -1,7 +1,8 @@
-#include "core/sim/geometry_queries.hpp"
+#include "core/geometry/geometry_queries.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace irgs {
 
@@ -110,6 +111,20 @@ bool polygonTouchesBox(std::span<const Vec2> polygon, const Box2& box) {
   }
   // No edge meets the box: the box is wholly inside or wholly outside the polygon.
   return pointInPolygon(0.5 * (box.min + box.max), polygon);
+}
+
+double signedArea(std::span<const Vec2> polygon) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  return 0.5 * twice;
+}
+
+double pointPolygonBoundaryDistance(const Vec2& p, std::span<const Vec2> polygon) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    best = std::min(best, pointSegmentDistance(p, polygon[i], polygon[(i + 1) % polygon.size()]));
+  return best;
 }
 
 Box2 boundsOf(std::span<const Vec2> points) {
