@@ -9,9 +9,9 @@
 #include <string_view>
 
 #include "app/sim/map_compare.hpp"
-#include "core/behaviour/travel_behaviour.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/mapping/map_score.hpp"
+#include "core/mission/travel_mission.hpp"
 #include "core/planning/astar.hpp"
 #include "core/planning/coverage.hpp"
 #include "core/planning/path_amendment.hpp"
@@ -109,9 +109,9 @@ std::optional<std::string> prepareBehaviourJob(const SimOptions& options, const 
       MapBuildingConfig config;
       config.grid_resolution_m = options.grid_resolution_m;
       config.max_time_s = options.duration_s.value_or(3600.0);
-      auto b = std::make_unique<MapBuildingBehaviour>(profile, config);
+      auto b = std::make_unique<MapBuildingMission>(profile, config);
       job.builder = b.get();
-      job.behaviour = std::move(b);
+      job.mission = std::move(b);
       return std::nullopt;
     }
     if (options.behaviour != "goal" && options.behaviour != "coverage")
@@ -163,7 +163,7 @@ std::optional<std::string> prepareBehaviourJob(const SimOptions& options, const 
                            {"turns", cov.turns},
                            {"segments", travel.segments.size()}};
     }
-    job.behaviour = std::make_unique<TravelBehaviour>(profile, std::move(travel));
+    job.mission = std::make_unique<TravelMission>(job.planned);
   } catch (const std::exception& e) {
     return std::string("cannot set up the behaviour: ") + e.what();
   }
@@ -186,7 +186,7 @@ BehaviourRunOutcome writeBehaviourOutputs(const SimOptions& options, BehaviourJo
                           {"built_cells", score.built_cells},
                           {"truth_cells", score.truth_cells}};
   };
-  if (MapBuildingBehaviour* builder = job.builder) {
+  if (MapBuildingMission* builder = job.builder) {
     result.scenario.grid = builder->grid();  // the map the behaviour built (revised poses)
     if (info.truth) {
       try {
@@ -211,7 +211,7 @@ BehaviourRunOutcome writeBehaviourOutputs(const SimOptions& options, BehaviourJo
         {"first_wall_was_obstacle", builder->firstWallWasObstacle()},
         {"outline_area_m2",
          builder->outline() ? rounded(-builder->outline()->signed_area_m2) : 0.0},
-        {"heading_corrections", builder->headingCorrections()},
+        {"heading_corrections", builder->revisedPose().headingCorrections()},
         {"interior_targets", builder->interiorTargetsVisited()}};
     job.planned = builder->allIndices();
   } else if (job.kind == "goal") {
@@ -293,7 +293,7 @@ BehaviourRunOutcome runBehaviourMode(const SimOptions& options, const WorldMap& 
   spec.max_duration_s = options.duration_s.value_or(3600.0);
   spec.grid_resolution_m = options.grid_resolution_m;
   spec.wall_clock = clock;
-  BehaviourScenarioResult result = runBehaviourScenario(spec, *job.behaviour);
+  BehaviourScenarioResult result = runMissionScenario(spec, *job.mission);
   BehaviourOutputInfo info;
   info.run = {options.map.filename().string(), profile.name, options.seed};
   info.truth = &map;

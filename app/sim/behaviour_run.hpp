@@ -1,9 +1,10 @@
 #pragma once
-// irgs-sim --behaviour: runs a host behaviour and writes its outputs (see simUsage): mapbuild
+// irgs-sim --behaviour: runs a host mission and writes its outputs (see simUsage): mapbuild
 // (autonomous sonar map building), goal (A* + path amendment + traveling to --goal) and coverage
-// (spiral cleaning path + traveling). The robot is the in-process simulator (runBehaviourMode)
-// or a linked robot (app/sim/linked_run.hpp); both set the behaviour up with
-// prepareBehaviourJob and write the same files with writeBehaviourOutputs.
+// (spiral cleaning path + traveling). The robot runs the motion primitives, the host the rest
+// (core/mission). The robot is the in-process simulator (runBehaviourMode) or a linked robot
+// (app/sim/linked_run.hpp); both set the mission up with prepareBehaviourJob and write the same
+// files with writeBehaviourOutputs.
 
 #include <filesystem>
 #include <functional>
@@ -14,8 +15,8 @@
 #include <vector>
 
 #include "app/sim/sim_options.hpp"
-#include "core/behaviour/behaviour.hpp"
-#include "core/behaviour/map_building.hpp"
+#include "core/mission/map_building_mission.hpp"
+#include "core/mission/mission.hpp"
 #include "core/planning/planning_grid.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/scenario/behaviour_runner.hpp"
@@ -30,15 +31,15 @@ struct BehaviourRunOutcome {
   std::string error;
 };
 
-// A behaviour set up for a run, with what its outputs need afterwards.
+// A mission set up for a run, with what its outputs need afterwards.
 struct BehaviourJob {
   std::string kind;  // options.behaviour: mapbuild, goal or coverage
-  std::unique_ptr<Behaviour> behaviour;
-  MapBuildingBehaviour* builder = nullptr;  // mapbuild: the behaviour, for its grid and indices
-  Pose2 start;                              // map frame
-  std::vector<Vec2> planned;                // goal/coverage: the turning points to travel
-  PlanningGrid plan_grid;                   // goal/coverage: the inflated true map
-  double lane_m = 0.0;                      // coverage: lane width
+  std::unique_ptr<Mission> mission;
+  MapBuildingMission* builder = nullptr;  // mapbuild: the mission, for its grid and indices
+  Pose2 start;                            // map frame
+  std::vector<Vec2> planned;              // goal/coverage: the turning points to travel
+  PlanningGrid plan_grid;                 // goal/coverage: the inflated true map
+  double lane_m = 0.0;                    // coverage: lane width
   nlohmann::json extra = nlohmann::json::object();  // plan summary for metrics.json
 };
 
@@ -67,7 +68,7 @@ BehaviourRunOutcome writeBehaviourOutputs(const SimOptions& options, BehaviourJo
                                           BehaviourScenarioResult& result,
                                           BehaviourOutputInfo info);
 
-// The in-process run: prepareBehaviourJob + runBehaviourScenario + writeBehaviourOutputs.
+// The in-process run: prepareBehaviourJob + runMissionScenario + writeBehaviourOutputs.
 // `clock` gives wall seconds for the wall_clock_s metric. Throws nothing for expected failures:
 // a goal that cannot be planned or a behaviour that fails is reported in the outcome (and in
 // metrics.json when the outputs could be written).

@@ -131,7 +131,7 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
       std::fprintf(stderr, "irgs-sim: %s\n", error->c_str());
       return kExitLink;  // the behaviour could not start: nothing was driven
     }
-    spec.behaviour = job.behaviour.get();
+    spec.behaviour = job.mission.get();
     spec.duration_s = options.duration_s.value_or(3600.0);
   } else {
     spec.duration_s = options.duration_s.value_or(

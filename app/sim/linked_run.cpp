@@ -14,15 +14,17 @@
 #include "app/sim/link_adapter.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "core/mapping/sonar_mapper.hpp"
+#include "core/mission/mission_runner.hpp"
+#include "core/robot/anchored_robot.hpp"
 
 namespace irgs::app {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-// A script holds each command for a while: drain like the GUI (60 Hz). A behaviour answers
-// every sample, and its answer should reach the robot with the least added delay (the
-// simulator applies it at the next step): poll faster.
+// A script holds each command for a while: drain like the GUI (60 Hz). A mission reacts to
+// samples and reports; its requests should reach the robot with the least added delay: poll
+// faster.
 constexpr auto kScriptLoopPeriod = std::chrono::milliseconds(16);
 constexpr auto kBehaviourLoopPeriod = std::chrono::milliseconds(4);
 
@@ -38,12 +40,6 @@ std::string seconds(double s) {
 
 bool positive(double v) {
   return std::isfinite(v) && v > 0.0;
-}
-
-// p^-1, so that p.compose(inverse(p)) is the identity.
-Pose2 inverse(const Pose2& p) {
-  const double c = std::cos(p.theta), s = std::sin(p.theta);
-  return {-(c * p.x + s * p.y), s * p.x - c * p.y, wrapAngle(-p.theta)};
 }
 
 nlohmann::ordered_json poseJson(const Pose2& p) {
@@ -123,17 +119,18 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
                             seconds(spec.duration_s) + " s)"
                       : "running the script for " + seconds(spec.duration_s) + " s"));
 
-  // Map frame <- the robot's odometry frame: puts the first sample at the anchor.
+  // Map frame <- the robot's odometry frame: the first sample is put at the anchor; samples and
+  // reports come out in the map frame, primitives go in in the robot's frame.
   out.first_odometry = pending.front().odometry_pose;
-  const Pose2 to_map = spec.anchor ? spec.anchor->compose(inverse(*out.first_odometry)) : Pose2{};
-  auto anchored = [&](TelemetrySample s) {
-    if (spec.anchor) {
-      s.odometry_pose = to_map.compose(s.odometry_pose);
-      if (s.true_pose)
-        s.true_pose = to_map.compose(*s.true_pose);
+  AnchoredRobot anchored(robot, spec.anchor);
+  pending = anchored.toMap(std::move(pending));
+  MissionRunner runner;
+  if (spec.behaviour) {
+    if (auto refused = runner.start(*spec.behaviour, anchored)) {
+      out.error = *refused;
+      return out;
     }
-    return s;
-  };
+  }
 
   // 2. Drive (script on the wall clock, or the behaviour on every sample); integrate samples.
   ScenarioResult result{OccupancyGrid(spec.grid_resolution_m), {}, {}};
@@ -146,7 +143,6 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   std::optional<Pose2> previous_pose;
   std::uint32_t previous_bumpers = 0;
   VelocityCommand command;
-  bool was_turning = false;
   TrajectoryRow last_row;
   // Returns the robot time of the sample relative to the first one.
   auto integrate = [&](const TelemetrySample& s) {
@@ -177,37 +173,35 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
     }
     return t;
   };
-  // The behaviour's answer to one sample, with the same bookkeeping as runBehaviourScenario.
-  auto consult = [&](const TelemetrySample& s, double t) {
-    command = spec.behaviour->onSample(s);
-    if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps))
-      command = {};  // a behaviour bug must not reach the robot
-    const bool turning = command.linear_mps == 0.0 && command.angular_radps != 0.0;
-    if (turning && !was_turning)
-      ++b.turns;
-    was_turning = turning;
-    const BehaviourStatus status = spec.behaviour->status();
+  // The mission's view of the samples (and the reports that came with them), with the same
+  // bookkeeping as runMissionScenario.
+  auto consult = [&](const std::vector<TelemetrySample>& samples) {
+    if (samples.empty() && !runner.running())
+      return;
+    runner.feed(samples);
+    const double t = last_row.time_s;
+    const BehaviourStatus status = runner.status();
     if (b.phases.empty() || b.phases.back().phase != status.phase)
       b.phases.push_back({status.phase, t, t});
     b.phases.back().end_s = t;
-    if (status.finished) {
+    if (!runner.running() && !b.finished) {
       b.finished = true;
       b.failed = status.failed;
       b.message = status.message;
-      command = {};
+      b.primitives = runner.primitivesStarted();
     }
-    last_row.command = command;
-    if (!result.trajectory.empty() && result.trajectory.back().time_s == t)
-      result.trajectory.back().command = command;  // the row of this sample holds the answer
   };
-  auto take = [&](const TelemetrySample& raw) {
-    const TelemetrySample s = anchored(raw);
-    const double t = integrate(s);
+  auto take = [&](std::vector<TelemetrySample> raw) {
+    std::vector<TelemetrySample> samples = anchored.toMap(std::move(raw));
+    for (const TelemetrySample& s : samples)
+      integrate(s);
     if (spec.behaviour && !b.finished)
-      consult(s, t);
+      consult(samples);
   };
   for (const auto& s : pending)
-    take(s);
+    integrate(s);
+  if (spec.behaviour)
+    consult(pending);
   pending.clear();
 
   const Clock::time_point run_start = Clock::now();
@@ -218,13 +212,12 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
     const double elapsed = secondsSince(run_start);
     if (elapsed >= spec.duration_s)
       break;
-    if (!spec.behaviour)
+    if (!spec.behaviour) {
       command = spec.script.commandAt(elapsed);
-    robot.drive(command);  // sent when it changes; the adapter repeats it while non-zero
-    for (const auto& s : link.update())
-      take(s);
+      robot.drive(command);  // sent when it changes; the adapter repeats it while non-zero
+    }
+    take(link.update());
     if (spec.behaviour) {
-      robot.drive(command);  // the answer to the newest sample, at once
       if (!b.phases.empty() && b.phases.back().phase != last_phase) {
         last_phase = b.phases.back().phase;
         log("phase: " + last_phase + " at " + seconds(b.phases.back().start_s) + " s");
@@ -241,10 +234,12 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   out.cancelled = cancelled();
   if (spec.behaviour && !b.finished) {
     b.failed = true;
+    b.primitives = runner.primitivesStarted();
     b.message = out.cancelled ? "interrupted (" + spec.behaviour->status().phase + ")"
                               : "time budget of " + seconds(spec.duration_s) +
                                     " s used up before the behaviour finished (" +
                                     spec.behaviour->status().phase + ")";
+    runner.abort(b.message);
   }
 
   // 3. Stop the robot and wait (bounded) for the confirmation and the last samples.
@@ -252,16 +247,14 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   link.requestStop();
   const Clock::time_point stop_start = Clock::now();
   while (!link.stopConfirmed() && secondsSince(stop_start) < spec.stop_timeout_s) {
-    for (const auto& s : link.update())
-      take(s);
+    take(link.update());
     drainEvents();
     std::this_thread::sleep_for(kScriptLoopPeriod);
   }
   out.stop_acknowledged = link.stopConfirmed().value_or(false);
   if (!out.stop_acknowledged)
     log("warning: the robot did not confirm the final stop (its own watchdog stops it)");
-  for (const auto& s : link.update())
-    take(s);
+  take(link.update());
   drainEvents();
   if (out.samples > 0 &&
       (result.trajectory.empty() || result.trajectory.back().time_s != last_row.time_s))

@@ -2,10 +2,11 @@
 // `irgs-sim --connect URL`: a headless run against a linked robot instead of the in-process
 // simulator: MAVLink, or ARCOS/P2OS when the URL says ?protocol=arcos (app/sim/link_adapter.hpp).
 // Either a drive script runs on the wall clock (the robot's own clock runs at wall speed), or a
-// host behaviour (map building, goal, coverage: core/behaviour) answers every sample that comes
-// back with the next command, exactly as it does in the simulator; its commands go out through
-// the robot adapter. Every sample is integrated into the grid by the same SonarMapper as the
-// in-process run, so the outputs (writeScenarioOutputs, writeBehaviourOutputs) have the same form.
+// host mission (map building, goal, coverage: core/mission) runs through a MissionRunner exactly
+// as it does against the simulator: the robot runs the motion primitives it sends, the mission
+// reacts to the samples and reports that come back (late and sparse over a real link). Every sample
+// is integrated into the grid by the same SonarMapper as the in-process run, so the outputs
+// (writeScenarioOutputs, writeBehaviourOutputs) have the same form.
 //
 // Frames: with `anchor` set, the odometry is re-expressed by the rigid transform that puts the
 // first sample at the anchor (the map-frame start pose): an ARCOS robot counts from (0, 0, 0) at
@@ -21,8 +22,8 @@
 #include <vector>
 
 #include "comms/link/link_types.hpp"
-#include "core/behaviour/behaviour.hpp"
 #include "core/mapping/occupancy_grid.hpp"
+#include "core/mission/mission.hpp"
 #include "core/robot/robot_profile.hpp"
 #include "core/scenario/behaviour_runner.hpp"
 #include "core/scenario/scenario_runner.hpp"
@@ -34,9 +35,10 @@ struct LinkedRunSpec {
   std::string url;  // serial:///dev/ttyUSB0?baud=115200, tcp://host:8101?protocol=arcos, ...
   RobotProfile profile;
   DriveScript script;
-  // When set, drives the robot instead of the script: it sees every sample (anchored) and its
-  // answer is sent at once; the run ends when it finishes or after duration_s. Not owned.
-  Behaviour* behaviour = nullptr;
+  // When set, drives the robot instead of the script: it sees every sample and report
+  // (anchored) and its requests are sent at once; the run ends when it finishes or after
+  // duration_s. Not owned.
+  Mission* behaviour = nullptr;
   std::optional<Pose2> anchor;      // map-frame pose of the first sample (see the file comment)
   double duration_s = 60.0;         // wall seconds of driving after the link is up (budget)
   double connect_timeout_s = 10.0;  // link up and first sample, else an error

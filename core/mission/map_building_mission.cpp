@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -23,6 +24,12 @@ constexpr double kAnchorBlacklist_m = 0.5;
 constexpr double kMissedAnchorBlacklist_m = 1.2;
 constexpr double kPocketMaxArea_m2 = 1.0;  // clockwise obstacle loops smaller than this: pockets
 constexpr int kMaxSafetyRetries = 5;       // a primitive stopped by the robot's safety rules
+
+std::string formatPoint(const Vec2& p) {
+  char text[48];
+  std::snprintf(text, sizeof text, "(%.2f, %.2f)", p.x(), p.y());
+  return text;
+}
 
 MapBuildingConfig checked(MapBuildingConfig c) {
   if (const auto err = mapBuildingConfigError(c))
@@ -323,6 +330,7 @@ void MapBuildingMission::nextInteriorTarget() {
   motion::SegmentsSpec travel;
   travel.speed_mps = config_.travel_speed_mps;
   travel.clearance_m = config_.follow.distance_m + config_.follow.front_margin_m;
+  travel.stop_beyond_waypoint = true;  // a wall met on the way may be an unvisited obstacle
   for (std::size_t i = 1; i < target_->path.size() && travel.append(toOdometry(target_->path[i]));
        ++i) {
   }
@@ -352,12 +360,12 @@ void MapBuildingMission::frontWall() {
       sonar_.frontDistance().value_or(config_.follow.distance_m + config_.follow.front_margin_m);
   const Vec2 hit = pose().position() + front * pose().heading();
   if (move_ == Move::kApproach) {
-    message_ = "obstacle reached: circumnavigate counter-clockwise";
+    message_ = "obstacle reached at " + formatPoint(hit) + ": circumnavigate counter-clockwise";
     obstacle_anchor_ = hit;
     return startFollowing(MapBuildingPhase::kObstacle);
   }
   if (record_.insideOutline(hit) && !record_.explained(hit) && !record_.visitedOften(hit)) {
-    message_ = "obstacle met: circumnavigate counter-clockwise";
+    message_ = "obstacle met at " + formatPoint(hit) + ": circumnavigate counter-clockwise";
     obstacle_anchor_ = hit;
     return startFollowing(MapBuildingPhase::kObstacle);
   }

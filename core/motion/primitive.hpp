@@ -65,7 +65,10 @@ struct SegmentsSpec {
   std::uint8_t count = 0;
   double speed_mps = 0.0;    // 0: the robot's default
   double quantum_rad = 0.0;  // turns rounded to multiples of this (0: exact)
-  bool stop_at_wall = true;  // end with kFrontWall when something is ahead inside clearance
+  // End with kFrontWall when something is ahead within the clearance: only when it lies before
+  // the waypoint (travel on a known map), or anywhere ahead (exploring: any wall met counts).
+  bool stop_at_wall = true;
+  bool stop_beyond_waypoint = false;
   double clearance_m = 0.0;  // 0: the robot's default
   bool append(const Vec2& p) {
     if (count >= kMaxWaypoints)

@@ -102,7 +102,8 @@ StepOutcome SegmentsPrimitive::drive(const MotionInput& in, const SonarMemory& s
   if (spec_.stop_at_wall) {
     const auto front = sonar.frontDistance();
     if (front && *front < clearance_m_ &&
-        *front < remaining + geometry_->front_extent_m + kStopMargin_m) {
+        (spec_.stop_beyond_waypoint ||
+         *front < remaining + geometry_->front_extent_m + kStopMargin_m)) {
       out.finish(ReportKind::kFrontWall);
       return out;
     }
