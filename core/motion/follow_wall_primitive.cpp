@@ -37,6 +37,7 @@ bool FollowWallPrimitive::start(const FollowWallSpec& spec, const MotionInput& n
 StepOutcome FollowWallPrimitive::step(const MotionInput& in) {
   StepOutcome out;
   out.command = control_->step(in);
+  out.heading_rad = control_->headingSetpoint();
   const WallFollowEvent event = control_->event();
   if (event == WallFollowEvent::kWallAhead && spec_.stop_at_front_wall) {
     out.finish(ReportKind::kFrontWall);

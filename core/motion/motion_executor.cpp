@@ -126,6 +126,7 @@ const WallFollowControl* MotionExecutor::wallFollower() const {
 
 VelocityCommand MotionExecutor::step(const MotionInput& input) {
   sonar_.update(input);
+  heading_setpoint_.reset();
   if (!status_.running)
     return {};
   const Pose2& p = input.odometry;
@@ -150,7 +151,10 @@ VelocityCommand MotionExecutor::step(const MotionInput& input) {
       push(n.kind, n.reason, n.index, input);
     }
   }
-  return out.finished ? VelocityCommand{} : out.command;
+  if (out.finished)
+    return {};
+  heading_setpoint_ = out.heading_rad;
+  return out.command;
 }
 
 }  // namespace irgs::motion

@@ -53,6 +53,9 @@ class MotionExecutor {
 
   // One control period: the wheel command to hold until the next (zero when idle).
   VelocityCommand step(const MotionInput& input);
+  // The heading the last step's command steers toward, when the primitive has one (see
+  // StepOutcome::heading_rad): for a robot that holds a heading itself.
+  const std::optional<double>& headingSetpoint() const { return heading_setpoint_; }
 
   bool running() const { return status_.running; }
   const ExecutorStatus& status() const { return status_; }
@@ -79,6 +82,7 @@ class MotionExecutor {
                SegmentsPrimitive, FollowPathPrimitive>
       active_;
   ExecutorStatus status_;
+  std::optional<double> heading_setpoint_;
   std::array<MotionReport, kReportCapacity> reports_{};
   std::size_t report_head_ = 0;
   std::size_t report_count_ = 0;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "core/motion/primitive.hpp"
 #include "core/motion/wall_follow.hpp"
@@ -42,6 +43,10 @@ struct Note {
 
 struct StepOutcome {
   VelocityCommand command;
+  // The heading the command steers toward, when the primitive has one (a turn's target, a
+  // straight leg's hold heading, the wall follower's approach heading): a robot that holds a
+  // heading itself (ARCOS HEAD) is given this instead of the turn rate.
+  std::optional<double> heading_rad;
   std::array<Note, 4> notes{};
   std::uint8_t note_count = 0;
   bool finished = false;
@@ -55,6 +60,7 @@ struct StepOutcome {
     add(kind, reason, index);
     finished = true;
     command = {};
+    heading_rad.reset();
   }
 };
 

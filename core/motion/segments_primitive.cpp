@@ -123,6 +123,7 @@ StepOutcome SegmentsPrimitive::drive(const MotionInput& in, const SonarMemory& s
   // Far off the leg direction (a disturbed robot), turn first rather than sweep sideways.
   v *= std::max(0.0, std::cos(heading_error));
   out.command = {v, omega};
+  out.heading_rad = aim;
   return out;
 }
 

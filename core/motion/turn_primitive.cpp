@@ -54,6 +54,7 @@ StepOutcome TurnPrimitive::step(const MotionInput& in) {
     return out;
   }
   out.command = {0.0, s.angular_radps};
+  out.heading_rad = target_rad_;
   return out;
 }
 

@@ -181,6 +181,7 @@ VelocityCommand WallFollowControl::follow(const Pose2& pose) {
       note(WallFollowEvent::kCornerClear);
       return straightCommand(pose.theta, hold_heading_, config_.speed_mps);
     }
+    follow_heading_ = pose.theta;
     return straightCommand(pose.theta, pose.theta, config_.speed_mps);
   }
   lost_count_ = 0;
@@ -215,6 +216,7 @@ VelocityCommand WallFollowControl::follow(const Pose2& pose) {
       distanceKeepingOffset(distance, config_.distance_m, config_.valid_distance_m,
                             config_.distance_gain_rad_per_m, config_.max_approach_rad);
   const double heading_error = wall_angle + side_sign_ * offset;
+  follow_heading_ = wrapAngle(pose.theta + heading_error);
   const double w = std::clamp(config_.heading_gain * heading_error, -config_.turn_rate_radps,
                               config_.turn_rate_radps);
   const double v = config_.speed_mps * std::max(0.3, 1.0 - std::abs(heading_error));
@@ -230,6 +232,7 @@ VelocityCommand WallFollowControl::step(const MotionInput& input) {
   const Pose2& pose = input.odometry;
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
     note(WallFollowEvent::kPoseNotFinite);
+    heading_setpoint_.reset();
     return {};
   }
   if (have_pose_)
@@ -250,9 +253,34 @@ VelocityCommand WallFollowControl::step(const MotionInput& input) {
     contact_since_s_ = input.time_s;
   } else if (input.time_s - *contact_since_s_ >= config_.blocked_s) {
     contact_since_s_.reset();
-    return escapeBlocked(pose);
+    const VelocityCommand command = escapeBlocked(pose);
+    heading_setpoint_ = setpointFor(command, pose);
+    return command;
   }
-  return modeStep(input, pose);
+  const VelocityCommand command = modeStep(input, pose);
+  heading_setpoint_ = setpointFor(command, pose);
+  return command;
+}
+
+std::optional<double> WallFollowControl::setpointFor(const VelocityCommand& command,
+                                                     const Pose2& pose) const {
+  if (command == VelocityCommand{})
+    return std::nullopt;
+  switch (mode_) {
+    case WallFollowMode::kTurn:
+      return target_heading_;
+    case WallFollowMode::kFollow:
+      return follow_heading_;
+    case WallFollowMode::kSeek:
+    case WallFollowMode::kLost:
+      return pose.theta;
+    case WallFollowMode::kClear:
+    case WallFollowMode::kReacquire:
+    case WallFollowMode::kBackUp:
+    case WallFollowMode::kEscapeForward:
+      return hold_heading_;
+  }
+  return std::nullopt;
 }
 
 VelocityCommand WallFollowControl::modeStep(const MotionInput& input, const Pose2& pose) {

@@ -93,6 +93,10 @@ class WallFollowControl {
   bool setWallOnLeft(bool on_left);
 
   WallFollowEvent event() const { return event_; }
+  // The heading the last step's command steers toward (a turn's target, the held heading of a
+  // straight move, the approach heading of (d) while following), or nothing when it backs up or
+  // stops.
+  std::optional<double> headingSetpoint() const { return heading_setpoint_; }
   double eventTurn_rad() const { return event_turn_rad_; }
   WallFollowMode mode() const { return mode_; }
   // True while the robot is following a wall it sees (not turning, seeking or reacquiring).
@@ -117,6 +121,7 @@ class WallFollowControl {
   void startStraight(WallFollowMode mode, const Pose2& pose);
   bool escaping() const;  // backing up, turning or creeping forward: contact is expected
   void note(WallFollowEvent event, double turn_rad = 0.0);
+  std::optional<double> setpointFor(const VelocityCommand& command, const Pose2& pose) const;
   std::optional<double> sideWallDistance() const;  // front side sonar, within the present limit
 
   WallFollowConfig config_;
@@ -144,6 +149,8 @@ class WallFollowControl {
   double now_s_ = 0.0;
   double measured_rate_radps_ = 0.0;  // the current step's, for the turns started in it
   WallFollowEvent event_ = WallFollowEvent::kNone;
+  std::optional<double> heading_setpoint_;
+  double follow_heading_ = 0.0;  // what (d) steers toward while following
   double event_turn_rad_ = 0.0;
   std::optional<double> wall_angle_;
   std::optional<double> contact_since_s_;  // in contact while turning or backing up, since

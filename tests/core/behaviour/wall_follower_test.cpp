@@ -32,7 +32,7 @@ FollowRun runFollower(const WorldMap& map, WallFollowConfig config, SimConfig si
   FollowRun run;
   const auto segments = map.segments();
   run.segment_visits.assign(segments.size(), 1e9);
-  spec.observer = [&](const TelemetrySample& s, const Behaviour&) {
+  spec.observer = [&](const TelemetrySample& s, const Mission&) {
     const Vec2 p = s.true_pose->position();
     run.min_clearance_m = std::min(run.min_clearance_m, map.distanceToNearestSegment(p));
     for (std::size_t i = 0; i < segments.size(); ++i) {

@@ -276,3 +276,30 @@ TEST(MotionExecutor, ATurnHeldInContactEndsBlocked) {
 
 }  // namespace
 }  // namespace irgs::motion
+
+namespace irgs::motion {
+namespace {
+
+TEST(MotionExecutor, GivesTheHeadingItSteersTowardForRobotsThatHoldOneThemselves) {
+  Rig rig;
+  MotionInput in = motionInputOf(rig.sim.step());
+  TurnSpec turn;
+  turn.angle_rad = 0.5;
+  ASSERT_TRUE(rig.executor.start({1, turn}, in));
+  rig.executor.step(in);
+  ASSERT_TRUE(rig.executor.headingSetpoint().has_value());
+  EXPECT_NEAR(*rig.executor.headingSetpoint(), 0.5, 1e-9);
+  DriveSpec drive;
+  drive.distance_m = 1.0;
+  in.odometry.theta = 0.2;
+  ASSERT_TRUE(rig.executor.start({2, drive}, in));
+  in.odometry.theta = 0.25;  // drifted: the setpoint stays the start heading
+  rig.executor.step(in);
+  EXPECT_NEAR(*rig.executor.headingSetpoint(), 0.2, 1e-9);
+  rig.executor.cancel(in);
+  rig.executor.step(in);
+  EXPECT_FALSE(rig.executor.headingSetpoint().has_value());
+}
+
+}  // namespace
+}  // namespace irgs::motion
