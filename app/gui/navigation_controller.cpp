@@ -8,7 +8,6 @@
 #include "app/gui/session_controller.hpp"
 #include "core/navigation/delivery_behaviour.hpp"
 #include "core/navigation/ideal_ceiling_observer.hpp"
-#include "core/sim/simulated_robot.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/navigation/navigation_panel.hpp"
 
@@ -68,8 +67,8 @@ void NavigationController::onWorldLoaded() {
 
 bool NavigationController::go(const QString& start, const QString& goal) {
   const WorldMap& map = session_.worldMap();
-  auto* sim = dynamic_cast<SimulatedRobot*>(session_.robot());
-  if (sim == nullptr) {
+  SimulatedWorld* world = session_.simulatedWorld();
+  if (world == nullptr) {
     session_.report(EventLevel::kWarning,
                     tr("Navigate needs the simulator (the ceiling is seen by the ideal camera)"));
     return false;
@@ -84,7 +83,7 @@ bool NavigationController::go(const QString& start, const QString& goal) {
   // The navigator keeps positions in the odometry frame, which is the map frame when the robot
   // starts on the start node: put it there, facing the map's start heading.
   const Vec2 at = route.steps.front().position;
-  sim->simulator().resetPose({at.x(), at.y(), map.start.theta});
+  world->resetPose({at.x(), at.y(), map.start.theta});
   auto observer = std::make_shared<IdealCeilingObserver>(map, IdealCameraParams{}, 1);
   auto behaviour = std::make_unique<DeliveryBehaviour>(route, session_.profile(), observer,
                                                        deliveryParamsFor(session_.profile()));
@@ -102,8 +101,8 @@ void NavigationController::abort() {
 
 void NavigationController::refreshOverlay(const TelemetrySample& sample) {
   widgets::NavigationOverlay overlay;
-  if (auto* sim = dynamic_cast<SimulatedRobot*>(session_.robot()))
-    overlay.moving_obstacles = sim->simulator().movingObstaclePolygons();
+  if (const SimulatedWorld* world = session_.simulatedWorld())
+    overlay.moving_obstacles = world->movingObstaclePolygons();
   if (route_ && delivery_ && behaviours_->behaviour() == delivery_) {
     for (const RouteStep& s : route_->steps)
       overlay.route.push_back(s.position);

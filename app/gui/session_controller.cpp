@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "app/gui/event_format.hpp"
-#include "core/sim/simulated_robot.hpp"
 
 namespace irgs::gui {
 namespace {
@@ -45,6 +44,10 @@ SimulationControl* SessionController::simulationControl() {
   return robot_ ? robot_->simulationControl() : nullptr;
 }
 
+SimulatedWorld* SessionController::simulatedWorld() {
+  return robot_ ? robot_->simulatedWorld() : nullptr;
+}
+
 void SessionController::loadWorld(WorldMap map, const QString& source) {
   std::unique_ptr<Robot> robot = makeRobot(map);  // may throw: nothing has changed yet
   map_ = std::move(map);
@@ -61,8 +64,8 @@ void SessionController::loadWorld(WorldMap map, const QString& source) {
 }
 
 void SessionController::updateWorld(WorldMap map) {
-  if (auto* simulated = dynamic_cast<SimulatedRobot*>(robot_.get()))
-    simulated->setMap(map);
+  if (SimulatedWorld* world = simulatedWorld())
+    world->setWorld(map);
   map_ = std::move(map);
   emit worldEdited();
 }

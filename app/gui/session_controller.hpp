@@ -1,8 +1,8 @@
 #pragma once
-// One ground-station session: the robot (simulated today, linked later — this class only sees the
-// Robot interface), the world map, the robot profile, and the occupancy grid built from the
-// robot's sonar. A ~60 Hz timer advances the robot by the real elapsed time, integrates every
-// sample into the grid and reports the newest state and notable events.
+// One ground-station session: the robot (simulated or behind a link — this class only sees the
+// Robot interface and its capabilities), the world map, the robot profile, and the occupancy grid
+// built from the robot's sonar. A ~60 Hz timer advances the robot by the real elapsed time,
+// integrates every sample into the grid and reports the newest state and notable events.
 
 #include <QElapsedTimer>
 #include <QObject>
@@ -60,8 +60,8 @@ class SessionController : public QObject {
   // unchanged.
   void loadWorld(WorldMap map, const QString& source);
   // Replaces the map in place (the map editor): the robot, its pose, the grid and the source
-  // stay; a simulated robot's world is swapped (SimulatedRobot::setMap) so the simulator runs on
-  // what is being edited. A linked robot does not use the map. Emits worldEdited().
+  // stay; a simulated robot's world is swapped (SimulatedWorld::setWorld) so the simulator runs
+  // on what is being edited. A linked robot does not use the map. Emits worldEdited().
   void updateWorld(WorldMap map);
   // Replaces the robot factory and, with a robot from it, the robot (simulator <-> linked
   // robot). Throws what the factory throws (std::invalid_argument for an empty factory); the
@@ -88,6 +88,8 @@ class SessionController : public QObject {
   Robot* robot() { return robot_.get(); }
   // Null when the robot's clock is not ours (a linked robot).
   SimulationControl* simulationControl();
+  // Null when the robot's world is not simulated here (a linked robot).
+  SimulatedWorld* simulatedWorld();
   const std::optional<TelemetrySample>& latestSample() const { return latest_; }
   // Time of the newest sample shown (integrated), s; monotonic across robot resets.
   double displayTime_s() const { return display_time_s_; }

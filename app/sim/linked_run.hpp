@@ -1,11 +1,12 @@
 #pragma once
 // `irgs-sim --connect URL`: a headless run against a linked robot instead of the in-process
-// simulator: MAVLink, or ARCOS/P2OS when the URL says ?protocol=arcos (app/sim/link_adapter.hpp).
-// Either a drive script runs on the wall clock (the robot's own clock runs at wall speed), or a
-// host behaviour (map building, goal, coverage: core/behaviour) answers every sample that comes
-// back with the next command, exactly as it does in the simulator; its commands go out through
-// the robot adapter. Every sample is integrated into the grid by the same SonarMapper as the
-// in-process run, so the outputs (writeScenarioOutputs, writeBehaviourOutputs) have the same form.
+// simulator: MAVLink, or ARCOS/P2OS when the URL says ?protocol=arcos
+// (comms/robot/remote_robot.hpp). Either a drive script runs on the wall clock (the robot's own
+// clock runs at wall speed), or a host behaviour (map building, goal, coverage: core/behaviour)
+// answers every sample that comes back with the next command, exactly as it does in the simulator;
+// its commands go out through the robot adapter. Every sample is integrated into the grid by the
+// same SonarMapper as the in-process run, so the outputs (writeScenarioOutputs,
+// writeBehaviourOutputs) have the same form.
 //
 // Frames: with `anchor` set, the odometry is re-expressed by the rigid transform that puts the
 // first sample at the anchor (the map-frame start pose): an ARCOS robot counts from (0, 0, 0) at
