@@ -1,15 +1,16 @@
 #pragma once
-// Runs one host-side Behaviour (core/behaviour/behaviour.hpp) against the session's robot,
-// simulated or linked: every sample the robot produces goes to the behaviour, oldest first (the
-// session's sample observer), and the behaviour's answer becomes the session's command schedule
-// with the next change one robot step later, so the simulator applies it on the step after the
-// sample at every simulation speed. Pausing stops the robot and hides the paused time from the
-// behaviour (its clock continues where it stopped). A new robot (map loaded, reset) aborts it.
+// A controller's handle on the host-side behaviours it runs (core/behaviour/behaviour.hpp) on
+// the session's robot, simulated or linked. It does not drive the robot itself: it asks the
+// session's ActivityRunner to run each behaviour as a BehaviourActivity, and reports, from the
+// runner's signals, what happens to its own behaviours only (samples consumed, phase and
+// progress, messages, the end). A start while another activity drives the robot is refused or
+// preempts it, as the caller asks; a new robot (map loaded, reset) aborts it.
 
 #include <QObject>
 #include <QString>
 #include <memory>
 
+#include "app/gui/activity_runner.hpp"
 #include "core/behaviour/behaviour.hpp"
 #include "core/robot/telemetry.hpp"
 
@@ -22,18 +23,20 @@ class BehaviourController : public QObject {
 
  public:
   explicit BehaviourController(SessionController& session, QObject* parent = nullptr);
+  // Stops its behaviour if it still runs (the runner must not outlive what it reports to).
   ~BehaviourController() override;
 
-  // Replaces any running behaviour (the old one is aborted) and starts this one on the next
-  // robot sample. `label` names it in the console ("goal", "coverage", "map building").
-  void start(std::unique_ptr<Behaviour> behaviour, const QString& label);
-  // Stops the robot and the behaviour; no-op when none runs. The behaviour object stays
-  // available through behaviour() until the next start().
+  // Asks the runner to start `behaviour` under `label` ("Goal", "Coverage", "Map building"); it
+  // sees the robot's next sample. False when the runner refused it (a console line says why).
+  bool start(std::shared_ptr<Behaviour> behaviour, const QString& label,
+             ActivityRunner::Policy policy = ActivityRunner::Policy::kRefuseIfBusy);
+  // Stops the robot and the behaviour; no-op when this controller's behaviour does not run. The
+  // behaviour object stays available through behaviour() until the next start().
   void abort(const QString& reason);
   void setPaused(bool paused);
 
-  bool running() const { return behaviour_ && !finished_; }
-  bool paused() const { return paused_; }
+  bool running() const { return running_; }
+  bool paused() const;
   const QString& label() const { return label_; }
   // The current (or last finished) behaviour, or null.
   Behaviour* behaviour() { return behaviour_.get(); }
@@ -52,21 +55,16 @@ class BehaviourController : public QObject {
   void finished(bool failed, const QString& message);
 
  private:
-  void onSample(const TelemetrySample& sample);
-  void installHooks();
-  void removeHooks();
-  void finish(bool failed, const QString& message);
+  void onStarted(ActivityRunner::Id id);
+  void onSampleConsumed(ActivityRunner::Id id, const TelemetrySample& sample);
+  void onFinished(ActivityRunner::Id id, bool failed, const QString& message);
 
-  SessionController& session_;
-  std::unique_ptr<Behaviour> behaviour_;
+  ActivityRunner& runner_;
+  std::shared_ptr<Behaviour> behaviour_;
   QString label_;
-  VelocityCommand command_;
-  double step_s_ = 0.01;         // robot step, learnt from the sample spacing
-  double last_sample_s_ = -1.0;  // session time of the last sample seen
-  double paused_total_s_ = 0.0;  // session time hidden from the behaviour while paused
-  double paused_at_s_ = 0.0;
-  bool paused_ = false;
-  bool finished_ = false;
+  ActivityRunner::Id id_ = 0;  // of the last behaviour started here
+  bool starting_ = false;      // inside start(): the runner's next started() is ours
+  bool running_ = false;       // between the runner's started() and finished() for id_
   std::string last_message_;
 };
 

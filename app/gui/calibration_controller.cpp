@@ -80,20 +80,21 @@ void CalibrationController::driveSquare(const UmbmarkSquareConfig& config) {
   };
   if (behaviours_->running())
     return refuse(tr("a square is already being driven"));
-  if (session_.hasCommandSchedule())
-    return refuse(tr("another behaviour or drive script is driving the robot; stop it first"));
-  std::unique_ptr<UmbmarkSquareBehaviour> behaviour;
+  std::shared_ptr<UmbmarkSquareBehaviour> behaviour;
   try {
-    behaviour = std::make_unique<UmbmarkSquareBehaviour>(session_.profile(), config);
+    behaviour = std::make_shared<UmbmarkSquareBehaviour>(session_.profile(), config);
   } catch (const std::exception& e) {
     return refuse(QString::fromUtf8(e.what()));
   }
   square_ = behaviour.get();
   square_direction_ = config.direction;
+  if (!behaviours_->start(behaviour, tr("UMBmark square"))) {
+    square_ = nullptr;
+    return refuse(tr("another behaviour or drive script is driving the robot; stop it first"));
+  }
   session_.report(EventLevel::kInfo, tr("UMBmark: driving a %1 m %2 square")
                                          .arg(config.side_m)
                                          .arg(QString::fromLatin1(toString(config.direction))));
-  behaviours_->start(std::move(behaviour), tr("UMBmark square"));
 }
 
 void CalibrationController::onSquareFinished(bool failed, const QString& message) {

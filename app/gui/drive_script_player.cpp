@@ -1,11 +1,33 @@
 #include "app/gui/drive_script_player.hpp"
 
 #include <QFile>
-#include <limits>
+#include <memory>
+#include <utility>
 
 #include "app/gui/session_controller.hpp"
 
 namespace irgs::gui {
+
+DriveScriptActivity::DriveScriptActivity(DriveScript script, double start_s)
+    : script_(std::move(script)), start_s_(start_s) {}
+
+ActivityCommand DriveScriptActivity::command(double time_s) {
+  const double t = time_s - start_s_;
+  ActivityCommand command;
+  command.velocity = script_.commandAt(t);
+  for (const DriveScriptStep& step : script_.steps()) {
+    if (step.time_s > t) {
+      command.next_change_s = start_s_ + step.time_s;
+      return command;
+    }
+  }
+  done_ = true;
+  return command;
+}
+
+ActivityOutcome DriveScriptActivity::outcome() const {
+  return {done_, false, "Drive script finished; its last command holds"};
+}
 
 DriveScriptPlayer::LoadResult DriveScriptPlayer::load(const QString& path) {
   LoadResult out;
@@ -23,36 +45,26 @@ DriveScriptPlayer::LoadResult DriveScriptPlayer::load(const QString& path) {
 }
 
 DriveScriptPlayer::DriveScriptPlayer(SessionController& session, Script script, QObject* parent)
-    : QObject(parent), session_(session), script_(std::move(script)) {}
-
-DriveScriptPlayer::~DriveScriptPlayer() {
-  if (started_ && !finished_)
-    session_.setCommandSchedule(nullptr);  // the schedule refers to this object
+    : QObject(parent), session_(session), script_(std::move(script)) {
+  connect(&session_.runner(), &ActivityRunner::finished, this,
+          [this](ActivityRunner::Id id, bool failed, const QString& message) {
+            if (id == 0 || id != id_ || finished_)
+              return;
+            finished_ = true;
+            session_.report(failed ? EventLevel::kWarning : EventLevel::kInfo, message);
+          });
 }
 
-void DriveScriptPlayer::start() {
-  if (started_)
-    return;
-  started_ = true;
-  start_time_s_ = session_.robotTime_s();
-  connect(&session_, &SessionController::commandScheduleFinished, this, [this] {
-    if (finished_)
-      return;
-    finished_ = true;
-    session_.report(EventLevel::kInfo, tr("Drive script finished; its last command holds"));
-  });
-  session_.setCommandSchedule([this](double robot_time_s) {
-    const double t = robot_time_s - start_time_s_;
-    SessionController::ScheduledCommand scheduled;
-    scheduled.command = script_.commandAt(t);
-    for (const DriveScriptStep& step : script_.steps()) {
-      if (step.time_s > t) {
-        scheduled.next_change_s = start_time_s_ + step.time_s;
-        break;
-      }
-    }
-    return scheduled;
-  });
+// The script runs in the runner, on its own copy: it plays on without this object.
+DriveScriptPlayer::~DriveScriptPlayer() = default;
+
+bool DriveScriptPlayer::start() {
+  if (id_ != 0)
+    return true;
+  id_ = session_.runner().start(
+      std::make_unique<DriveScriptActivity>(script_, session_.robotTime_s()), tr("Drive script"),
+      ActivityRunner::Policy::kRefuseIfBusy);
+  return id_ != 0;
 }
 
 }  // namespace irgs::gui

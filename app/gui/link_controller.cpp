@@ -6,7 +6,6 @@
 
 #include "app/gui/link_format.hpp"
 #include "comms/link/link_url.hpp"
-#include "comms/robot/arcos_robot.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "comms/transport/port_discovery.hpp"
 
@@ -21,18 +20,35 @@ LinkController::LinkController(SessionController& session, QObject* parent)
 
 LinkController::~LinkController() = default;
 
-LinkedRobotHandle* LinkController::handle() const {
-  return dynamic_cast<LinkedRobotHandle*>(session_.robot());
+comms::MessageSamplerConfig guiMessageSampling() {
+  comms::MessageSamplerConfig config;
+  config.max_rate_hz = 25.0;
+  return config;
 }
 
-comms::ArcosRobot* LinkController::arcosRobot() const {
-  return dynamic_cast<comms::ArcosRobot*>(session_.robot());
+comms::RemoteRobot* LinkController::remote() const {
+  Robot* robot = session_.robot();
+  return robot != nullptr ? robot->remoteRobot() : nullptr;
+}
+
+comms::FirmwareParameters* LinkController::firmwareParameters() const {
+  comms::RemoteRobot* robot = remote();
+  return robot != nullptr ? robot->firmwareParameters() : nullptr;
+}
+
+comms::MessageStream* LinkController::messageStream() const {
+  comms::RemoteRobot* robot = remote();
+  return robot != nullptr ? robot->messageStream() : nullptr;
+}
+
+comms::BehaviourCommands* LinkController::behaviourCommands() const {
+  comms::RemoteRobot* robot = remote();
+  return robot != nullptr ? robot->behaviourCommands() : nullptr;
 }
 
 QString LinkController::url() const {
-  if (const LinkedRobotHandle* linked = handle())
-    return QString::fromStdString(linked->url());
-  return arcosRobot() != nullptr ? connected_url_ : QString();
+  const comms::RemoteRobot* robot = remote();
+  return robot != nullptr ? QString::fromStdString(robot->url()) : QString();
 }
 
 QString LinkController::connectTo(const QString& url) {
@@ -44,29 +60,20 @@ QString LinkController::connectTo(const QString& url) {
   if (!linked())
     simulator_factory_ = session_.robotFactory();
   const std::string text = parsed.url->toString();
-  connected_url_ = QString::fromStdString(text);
-  RobotFactory factory = [io = io_, link_url = *parsed.url, text, tap = frame_tap_](
+  RobotFactory factory = [io = io_, link_url = *parsed.url, tap = frame_tap_](
                              const WorldMap& world,
                              const RobotProfile& profile) -> std::unique_ptr<Robot> {
-    if (comms::isArcosUrl(link_url)) {
-      // A Pioneer over ARCOS (docs/pioneer.md): a plain Robot that keeps the io thread alive.
-      // ARCOS counts from (0, 0, 0) at OPEN: the robot is taken to stand at the map's start
-      // pose, so its sonar map lands on the map being shown.
-      comms::ArcosRobotConfig config;
-      config.start_pose = world.start;
-      comms::ArcosRobot::OpenResult arcos = comms::ArcosRobot::open(io, link_url, profile, config);
-      if (!arcos.robot)
-        throw std::runtime_error(arcos.error);
-      return std::unique_ptr<Robot>(std::move(arcos.robot));
-    }
-    comms::LinkedRobotConfig config;
-    config.link.tap = tap;
-    config.messages = guiMessageSampling();
-    comms::LinkedRobot::OpenResult opened =
-        comms::LinkedRobot::open(*io, link_url, profile, std::move(config));
+    comms::RemoteRobotConfig config;
+    config.mavlink.link.tap = tap;
+    config.mavlink.messages = guiMessageSampling();
+    // An ARCOS robot (docs/pioneer.md) counts from (0, 0, 0) at OPEN: it is taken to stand at
+    // the map's start pose, so its sonar map lands on the map being shown.
+    config.arcos.start_pose = world.start;
+    comms::OpenRemoteRobotResult opened =
+        comms::openRemoteRobot(io, link_url, profile, std::move(config));
     if (!opened.robot)
       throw std::runtime_error(opened.error);
-    return std::make_unique<LinkedRobotHandle>(io, std::move(opened.robot), text);
+    return std::move(opened.robot);
   };
   try {
     session_.setRobotFactory(std::move(factory));
@@ -93,56 +100,39 @@ void LinkController::disconnectLink() {
 }
 
 widgets::LinkHealth LinkController::health() const {
-  if (const comms::ArcosRobot* arcos = arcosRobot())
-    return toLinkHealth(arcos->linkStats(), QString::fromStdString(arcos->describe()));
-  LinkedRobotHandle* linked = handle();
-  if (linked == nullptr)
+  const comms::RemoteRobot* robot = remote();
+  if (robot == nullptr)
     return {};
-  return toLinkHealth(linked->linked().linkStats(), QString::fromStdString(linked->url()));
+  return toLinkHealth(robot->linkStats(), QString::fromStdString(robot->linkLabel()));
 }
 
-TelemetryRates LinkController::rates() const {
-  if (const comms::ArcosRobot* arcos = arcosRobot()) {
-    const comms::ArcosTelemetryRates r = arcos->telemetryRates();
-    TelemetryRates rates;
-    rates.samples = r.samples;
-    rates.sonar_readings = r.sonar_readings;
-    rates.odometry_hz = r.sample_hz;
-    rates.sonar_hz = r.sonar_hz;
-    rates.sonar_readings_per_s = r.sonar_readings_per_s;
-    return rates;
-  }
-  const LinkedRobotHandle* linked = handle();
-  return linked != nullptr ? linked->rates() : TelemetryRates{};
+comms::TelemetryRates LinkController::rates() const {
+  const comms::RemoteRobot* robot = remote();
+  return robot != nullptr ? robot->telemetryRates() : comms::TelemetryRates{};
 }
 
 void LinkController::poll() {
-  LinkedRobotHandle* linked = handle();
-  if (this->linked() != was_linked_) {
-    was_linked_ = this->linked();
+  comms::RemoteRobot* robot = remote();
+  if ((robot != nullptr) != was_linked_) {
+    was_linked_ = robot != nullptr;
     emit linkedChanged(was_linked_);
   }
-  // An ARCOS robot's events (the handshake's robot name and model, link loss, stalls) and its
-  // link state and byte counts, as for MAVLink.
-  if (auto* arcos = arcosRobot()) {
-    for (const comms::LinkEvent& event : arcos->takeEvents())
-      session_.report(levelOfSeverity(event.severity), formatLinkEvent(event));
-    emit healthChanged(health());
-  }
-  if (linked == nullptr)
+  if (robot == nullptr)
     return;
-  for (const comms::LinkEvent& event : linked->linked().takeEvents())
+  // Link events, the robot's own texts (MAVLink STATUSTEXT; ARCOS: the handshake's robot name
+  // and model, stalls), then the link state and byte counts.
+  for (const comms::LinkEvent& event : robot->takeEvents())
     session_.report(levelOfSeverity(event.severity), formatLinkEvent(event));
   emit healthChanged(health());
 }
 
 bool LinkController::sendBehaviour(const comms::RobotBehaviourCommand& command,
                                    const QString& what) {
-  LinkedRobotHandle* linked = handle();
-  if (linked == nullptr)
+  comms::BehaviourCommands* commands = behaviourCommands();
+  if (commands == nullptr)
     return false;
   // The result (accepted, rejected, timed out) arrives as a command-result link event.
-  linked->linked().sendBehaviour(command);
+  commands->sendBehaviour(command);
   session_.report(EventLevel::kInfo, tr("Behaviour: %1").arg(what));
   return true;
 }

@@ -1,8 +1,10 @@
 #pragma once
-// The robot link of the GUI: opens a linked robot (comms::LinkedRobot on one shared IoThread)
-// and makes it the session's robot through the session's robot factory, goes back to the
-// simulator, sends firmware behaviours, and polls the link on a timer: link events and the
-// robot's STATUSTEXT go to the console (levels by severity), statistics to whoever shows them.
+// The robot link of the GUI: opens a robot behind a link (comms::RemoteRobot, MAVLink or ARCOS,
+// on one shared IoThread) and makes it the session's robot through the session's robot factory,
+// goes back to the simulator, sends firmware behaviours, and polls the link on a timer: link
+// events and the robot's own texts go to the console (levels by severity), statistics to
+// whoever shows them. One code path for every protocol: what a protocol lacks is a null
+// capability of the RemoteRobot.
 
 #include <QObject>
 #include <QString>
@@ -10,18 +12,18 @@
 #include <memory>
 #include <vector>
 
-#include "app/gui/linked_robot_handle.hpp"
 #include "app/gui/session_controller.hpp"
 #include "comms/link/frame_tap.hpp"
+#include "comms/robot/remote_robot.hpp"
 #include "widgets/link/connection_dialog.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
-namespace irgs::comms {
-class ArcosRobot;
-class IoThread;
-}  // namespace irgs::comms
-
 namespace irgs::gui {
+
+// The decoded-message sampling the GUI's MAVLink robots ask for (LinkedRobotConfig::messages):
+// every stream (message, or message instance) at up to 25 Hz — the full profile's 20 Hz
+// streams whole, a replay at x16 thinned — for the plots' MAVLink fields.
+comms::MessageSamplerConfig guiMessageSampling();
 
 class LinkController : public QObject {
   Q_OBJECT
@@ -42,14 +44,16 @@ class LinkController : public QObject {
   // an empty function: none.
   void setFrameTap(comms::FrameTap tap) { frame_tap_ = std::move(tap); }
 
-  // A robot behind a link: MAVLink (handle()) or ARCOS (arcosRobot()).
-  bool linked() const { return handle() != nullptr || arcosRobot() != nullptr; }
+  // The session's robot when it is behind a link (a live link or a replay), else null.
+  comms::RemoteRobot* remote() const;
+  bool linked() const { return remote() != nullptr; }
   QString url() const;
-  // The session's robot when it is a linked one, else null.
-  LinkedRobotHandle* handle() const;
-  comms::ArcosRobot* arcosRobot() const;
   widgets::LinkHealth health() const;
-  TelemetryRates rates() const;
+  comms::TelemetryRates rates() const;
+  // The linked robot's optional capabilities; null when no robot is linked or it lacks one.
+  comms::FirmwareParameters* firmwareParameters() const;
+  comms::MessageStream* messageStream() const;
+  comms::BehaviourCommands* behaviourCommands() const;
 
   // Firmware behaviours (acknowledged and retried by the link; the result reaches the console).
   // False when no robot is linked.
@@ -74,7 +78,6 @@ class LinkController : public QObject {
   RobotFactory simulator_factory_;
   comms::FrameTap frame_tap_;
   QTimer poll_timer_;
-  QString connected_url_;  // the URL of the last connectTo()
   bool was_linked_ = false;
 };
 

@@ -105,8 +105,8 @@ void LinkUi::onModeRequested(int mode) {
 
 void LinkUi::onLinkedChanged(bool linked) {
   panel_.setMode(linked ? widgets::RobotMode::kLinkedRobot : widgets::RobotMode::kSimulator);
-  // The firmware behaviour commands are MAVLink's (an ARCOS robot has none of its own).
-  panel_.setBehavioursVisible(linked && controller_->handle() != nullptr);
+  // Firmware behaviour commands: a capability of the link (MAVLink's; ARCOS has none).
+  panel_.setBehavioursVisible(linked && controller_->behaviourCommands() != nullptr);
   health_panel_->setVisible(linked);
   status_label_->setVisible(linked);
   if (linked)

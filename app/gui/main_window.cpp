@@ -134,8 +134,9 @@ MainWindow::MainWindow(SessionController& session, QSettings& settings, QWidget*
   qApp->installEventFilter(teleop_);
   connect(teleop_, &widgets::KeyboardTeleop::commandChanged, &session_, &SessionController::drive);
   connect(teleop_, &widgets::KeyboardTeleop::stopPressed, &session_, &SessionController::stopRobot);
-  connect(teleop_, &widgets::KeyboardTeleop::stopPressed, planning_,
-          [this] { planning_->stopAll(tr("STOP pressed")); });
+  // STOP ends whatever drives the robot (a behaviour, a delivery, a square, a drive script).
+  connect(teleop_, &widgets::KeyboardTeleop::stopPressed, this,
+          [this] { session_.runner().stop(tr("STOP pressed")); });
 
   status_timer_ = new QTimer(this);
   status_timer_->setInterval(250);
@@ -288,8 +289,8 @@ void MainWindow::connectSession() {
 
   connect(panel_, &widgets::CommandPanel::driveRequested, &session_, &SessionController::drive);
   connect(panel_, &widgets::CommandPanel::stopRequested, &session_, &SessionController::stopRobot);
-  connect(panel_, &widgets::CommandPanel::stopRequested, planning_,
-          [this] { planning_->stopAll(tr("STOP pressed")); });
+  connect(panel_, &widgets::CommandPanel::stopRequested, this,
+          [this] { session_.runner().stop(tr("STOP pressed")); });
   connect(panel_, &widgets::CommandPanel::pausedChanged, &session_, &SessionController::setPaused);
   connect(panel_, &widgets::CommandPanel::stepRequested, &session_, &SessionController::singleStep);
   connect(panel_, &widgets::CommandPanel::simSpeedChanged, &session_,

@@ -8,7 +8,6 @@
 #include "app/gui/session_controller.hpp"
 #include "core/navigation/delivery_behaviour.hpp"
 #include "core/navigation/ideal_ceiling_observer.hpp"
-#include "core/sim/simulated_robot.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/navigation/navigation_panel.hpp"
 
@@ -68,8 +67,8 @@ void NavigationController::onWorldLoaded() {
 
 bool NavigationController::go(const QString& start, const QString& goal) {
   const WorldMap& map = session_.worldMap();
-  auto* sim = dynamic_cast<SimulatedRobot*>(session_.robot());
-  if (sim == nullptr) {
+  SimulatedWorld* world = session_.simulatedWorld();
+  if (world == nullptr) {
     session_.report(EventLevel::kWarning,
                     tr("Navigate needs the simulator (the ceiling is seen by the ideal camera)"));
     return false;
@@ -81,18 +80,27 @@ bool NavigationController::go(const QString& start, const QString& goal) {
         tr("No route from node %1 to node %2: %3").arg(start, goal, routeStatusName(route.status)));
     return false;
   }
-  // The navigator keeps positions in the odometry frame, which is the map frame when the robot
-  // starts on the start node: put it there, facing the map's start heading.
-  const Vec2 at = route.steps.front().position;
-  sim->simulator().resetPose({at.x(), at.y(), map.start.theta});
   auto observer = std::make_shared<IdealCeilingObserver>(map, IdealCameraParams{}, 1);
-  auto behaviour = std::make_unique<DeliveryBehaviour>(route, session_.profile(), observer,
+  auto behaviour = std::make_shared<DeliveryBehaviour>(route, session_.profile(), observer,
                                                        deliveryParamsFor(session_.profile()));
-  delivery_ = behaviour.get();
-  route_ = route;
+  // Shown first: a delivery that ends inside start() shows its end like any other.
+  const std::shared_ptr<const DeliveryBehaviour> previous = std::exchange(delivery_, behaviour);
+  std::optional<RoutePlan> previous_route = std::exchange(route_, route);
   panel_->setRoute(routeText(route));
   panel_->setRunning(true);
-  behaviours_->start(std::move(behaviour), tr("delivery %1 → %2").arg(start, goal));
+  if (!behaviours_->start(behaviour, tr("delivery %1 → %2").arg(start, goal))) {
+    // Another activity drives the robot (the runner said so): nothing changes.
+    delivery_ = previous;
+    route_ = std::move(previous_route);
+    panel_->setRunning(false);
+    panel_->setRoute(route_ ? routeText(*route_) : tr("No route"));
+    return false;
+  }
+  // The navigator keeps positions in the odometry frame, which is the map frame when the robot
+  // starts on the start node: put it there, facing the map's start heading (before the next
+  // robot update, so the delivery's first sample is taken there).
+  const Vec2 at = route.steps.front().position;
+  world->resetPose({at.x(), at.y(), map.start.theta});
   return true;
 }
 
@@ -102,9 +110,9 @@ void NavigationController::abort() {
 
 void NavigationController::refreshOverlay(const TelemetrySample& sample) {
   widgets::NavigationOverlay overlay;
-  if (auto* sim = dynamic_cast<SimulatedRobot*>(session_.robot()))
-    overlay.moving_obstacles = sim->simulator().movingObstaclePolygons();
-  if (route_ && delivery_ && behaviours_->behaviour() == delivery_) {
+  if (const SimulatedWorld* world = session_.simulatedWorld())
+    overlay.moving_obstacles = world->movingObstaclePolygons();
+  if (route_ && delivery_ && behaviours_->behaviour() == delivery_.get()) {
     for (const RouteStep& s : route_->steps)
       overlay.route.push_back(s.position);
     const LandmarkNavigator& nav = delivery_->navigator();

@@ -2,14 +2,16 @@
 // Landmark navigation in the GUI (issue 7, paper 002): the "Navigate" tab (start and goal node,
 // Go, Abort, route and state) and the navigation overlay on the map canvas (route over the
 // topological graph, the navigator's state, the repulsive, target and move vectors on the robot,
-// the simulator's moving obstacles). Go teleports the simulated robot onto the start node and
-// runs a DeliveryBehaviour through its own BehaviourController; the ceiling is seen by the
-// ideal geometric observer (core/navigation), so this works without the camera dock.
+// the simulator's moving obstacles). Go asks the session's runner to run a DeliveryBehaviour
+// (through its own BehaviourController: refused while another activity drives the robot) and
+// teleports the simulated robot onto the start node; the ceiling is seen by the ideal geometric
+// observer (core/navigation), so this works without the camera dock.
 //
 // Simulator mode only: the ideal observer projects the map at the robot's true pose.
 
 #include <QObject>
 #include <QString>
+#include <memory>
 #include <optional>
 
 #include "core/navigation/route_plan.hpp"
@@ -44,7 +46,7 @@ class NavigationController : public QObject {
   void abort();
 
   bool running() const;
-  const DeliveryBehaviour* delivery() const { return delivery_; }
+  const DeliveryBehaviour* delivery() const { return delivery_.get(); }
   widgets::NavigationPanel& panel() const { return *panel_; }
   BehaviourController& behaviours() const { return *behaviours_; }
 
@@ -56,7 +58,7 @@ class NavigationController : public QObject {
   widgets::MapCanvas& canvas_;
   widgets::NavigationPanel* panel_ = nullptr;
   BehaviourController* behaviours_ = nullptr;
-  const DeliveryBehaviour* delivery_ = nullptr;  // owned by behaviours_
+  std::shared_ptr<const DeliveryBehaviour> delivery_;  // the last one started here
   std::optional<RoutePlan> route_;
   QString last_state_;
 };

@@ -17,7 +17,6 @@
 #include <limits>
 
 #include "app/gui/link_controller.hpp"
-#include "app/gui/linked_robot_handle.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
@@ -336,29 +335,29 @@ void ParametersController::applyPlanning() {
 }
 
 bool ParametersController::readFirmwareParameters() {
-  LinkedRobotHandle* handle = link_.handle();
-  if (handle == nullptr) {
+  comms::FirmwareParameters* params = link_.firmwareParameters();
+  if (params == nullptr) {
     status_->setText(tr("No robot linked: firmware parameters need a link"));
     return false;
   }
-  handle->linked().requestParams();
+  params->requestParams();
   reading_ = true;
   status_->setText(tr("Reading firmware parameters…"));
   return true;
 }
 
 bool ParametersController::writeFirmwareParameter(const QString& name, double value, bool ask) {
-  LinkedRobotHandle* handle = link_.handle();
+  comms::FirmwareParameters* params = link_.firmwareParameters();
   const QString key = kFirmwarePrefix + name;
   const auto spec = table_->spec(key);
-  if (handle == nullptr) {
+  if (params == nullptr) {
     status_->setText(tr("No robot linked: %1 not written").arg(name));
     return false;
   }
   const QString question =
       tr("Write %1 = %2 %3 to the robot?").arg(name).arg(value).arg(spec ? spec->unit : QString());
   // The value shown stays the robot's until it confirms the write.
-  const auto current = handle->linked().firmwareParams();
+  const auto current = params->firmwareParams();
   auto restore = [&] {
     for (const comms::ParamEntry& e : current) {
       if (QString::fromStdString(e.name) == name)
@@ -371,7 +370,7 @@ bool ParametersController::writeFirmwareParameter(const QString& name, double va
     return false;
   }
   try {
-    handle->linked().setParam(name.toStdString(), value);
+    params->setParam(name.toStdString(), value);
   } catch (const std::invalid_argument& e) {
     restore();
     status_->setText(QString::fromUtf8(e.what()));
@@ -383,11 +382,10 @@ bool ParametersController::writeFirmwareParameter(const QString& name, double va
 }
 
 void ParametersController::poll() {
-  LinkedRobotHandle* handle = link_.handle();
-  if (handle == nullptr)
+  comms::FirmwareParameters* params = link_.firmwareParameters();
+  if (params == nullptr)
     return;
-  comms::LinkedRobot& robot = handle->linked();
-  for (const comms::ParamWriteResult& r : robot.takeParamResults()) {
+  for (const comms::ParamWriteResult& r : params->takeParamResults()) {
     const QString name = QString::fromStdString(r.name);
     const QString key = kFirmwarePrefix + name;
     const QString what = QString::fromLatin1(comms::toString(r.status));
@@ -405,18 +403,18 @@ void ParametersController::poll() {
     }
   }
   refreshFirmwareSection();
-  if (reading_ && !robot.readingParams()) {
+  if (reading_ && !params->readingParams()) {
     reading_ = false;
-    const std::vector<comms::ParamEntry> params = robot.firmwareParams();
-    const int got = static_cast<int>(params.size());
-    const int expected = robot.firmwareParamCount();
+    const std::vector<comms::ParamEntry> entries = params->firmwareParams();
+    const int got = static_cast<int>(entries.size());
+    const int expected = params->firmwareParamCount();
     status_->setText(expected > 0 && got >= expected
                          ? tr("%1 firmware parameters read").arg(got)
                          : tr("Firmware parameters: %1 of %2 read (no answer for the rest)")
                                .arg(got)
                                .arg(expected));
     QStringList values;
-    for (const comms::ParamEntry& e : params)
+    for (const comms::ParamEntry& e : entries)
       values << QStringLiteral("%1=%2").arg(QString::fromStdString(e.name)).arg(e.value);
     session_.report(got > 0 && got >= expected ? EventLevel::kInfo : EventLevel::kWarning,
                     tr("Firmware parameters read (%1 of %2): %3")
@@ -427,10 +425,10 @@ void ParametersController::poll() {
 }
 
 void ParametersController::refreshFirmwareSection() {
-  LinkedRobotHandle* handle = link_.handle();
-  if (handle == nullptr)
+  const comms::FirmwareParameters* firmware = link_.firmwareParameters();
+  if (firmware == nullptr)
     return;
-  const std::vector<comms::ParamEntry> params = handle->linked().firmwareParams();
+  const std::vector<comms::ParamEntry> params = firmware->firmwareParams();
   if (static_cast<int>(params.size()) != shown_firmware_count_) {
     std::vector<ParameterSpec> specs;
     for (const comms::ParamEntry& e : params) {

@@ -206,24 +206,24 @@ bool PlanningController::driveGoal() {
     return false;
   if (!planGoal(*goal_))  // from where the robot is now
     return false;
-  std::unique_ptr<TravelBehaviour> travel;
+  std::shared_ptr<TravelBehaviour> travel;
   try {
     // A goal path also stops for what the map did not show (forward sonars); coverage lanes
     // end near walls on purpose, so they rely on the bumpers and the watchdog only.
     TravelOptions options = travelOptionsFor(session_.profile());
     options.stop_distance_m = kGoalStopDistance_m;
-    travel = std::make_unique<TravelBehaviour>(session_.profile(), goal_preview_->travel, options);
+    travel = std::make_shared<TravelBehaviour>(session_.profile(), goal_preview_->travel, options);
   } catch (const std::exception& e) {
     session_.report(EventLevel::kError, tr("Cannot drive this path: %1").arg(e.what()));
     return false;
   }
   driven_path_ = goal_preview_->amended;
   reached_ = 0;
-  setRunning(Running::kGoal);
-  session_.report(EventLevel::kInfo, tr("Driving to %1: %2 segments")
-                                         .arg(point(goal_preview_->goal))
-                                         .arg(goal_preview_->travel.segments.size()));
-  behaviours_->start(std::move(travel), tr("Goal"));
+  const std::size_t segments = goal_preview_->travel.segments.size();
+  if (!startBehaviour(Running::kGoal, travel, nullptr, tr("Goal")))
+    return false;
+  session_.report(EventLevel::kInfo,
+                  tr("Driving to %1: %2 segments").arg(point(goal_preview_->goal)).arg(segments));
   refreshOverlay();
   return true;
 }
@@ -267,9 +267,9 @@ bool PlanningController::driveCoverage() {
   if (!planRegion(*region_))
     return false;
   const CoveragePreview& c = *coverage_preview_;
-  std::unique_ptr<TravelBehaviour> travel;
+  std::shared_ptr<TravelBehaviour> travel;
   try {
-    travel = std::make_unique<TravelBehaviour>(c.travel, travelOptionsFor(session_.profile()));
+    travel = std::make_shared<TravelBehaviour>(c.travel, travelOptionsFor(session_.profile()));
     sweep_.emplace(c.region_raw, c.region_inflated, c.region_start,
                    session_.profile().bodyRadius());
   } catch (const std::exception& e) {
@@ -278,10 +278,12 @@ bool PlanningController::driveCoverage() {
   }
   driven_path_ = c.path;
   reached_ = 0;
-  setRunning(Running::kCoverage);
-  session_.report(EventLevel::kInfo,
-                  tr("Covering the region: %1 segments").arg(c.travel.segments.size()));
-  behaviours_->start(std::move(travel), tr("Coverage"));
+  const std::size_t segments = c.travel.segments.size();
+  if (!startBehaviour(Running::kCoverage, travel, nullptr, tr("Coverage"))) {
+    sweep_.reset();
+    return false;
+  }
+  session_.report(EventLevel::kInfo, tr("Covering the region: %1 segments").arg(segments));
   refreshLive();
   return true;
 }
@@ -289,21 +291,40 @@ bool PlanningController::driveCoverage() {
 bool PlanningController::startMapBuilding() {
   if (running_ != Running::kNone)
     return false;
-  std::unique_ptr<MapBuildingBehaviour> building;
+  std::shared_ptr<MapBuildingBehaviour> building;
   try {
-    building = std::make_unique<MapBuildingBehaviour>(session_.profile());
+    building = std::make_shared<MapBuildingBehaviour>(session_.profile());
   } catch (const std::exception& e) {
     session_.report(EventLevel::kError, tr("Map building cannot run: %1").arg(e.what()));
     return false;
   }
   shown_indices_ = 0;
-  setRunning(Running::kMapBuilding);
-  session_.report(EventLevel::kInfo,
-                  tr("Map building started at %1")
-                      .arg(robotPose() ? point(robotPose()->position()) : QStringLiteral("?")));
-  behaviours_->start(std::move(building), tr("Map building"));
+  const QString where = robotPose() ? point(robotPose()->position()) : QStringLiteral("?");
+  if (!startBehaviour(Running::kMapBuilding, nullptr, building, tr("Map building")))
+    return false;
+  session_.report(EventLevel::kInfo, tr("Map building started at %1").arg(where));
   refreshLive();
   return true;
+}
+
+bool PlanningController::startBehaviour(Running running, std::shared_ptr<TravelBehaviour> travel,
+                                        std::shared_ptr<MapBuildingBehaviour> building,
+                                        const QString& label) {
+  std::shared_ptr<Behaviour> behaviour = building;
+  if (!behaviour)
+    behaviour = travel;
+  // Set first: a behaviour with nothing to do finishes inside start(), and its end is shown as
+  // this task's.
+  setRunning(running);
+  std::swap(travel_, travel);
+  std::swap(building_, building);
+  if (behaviours_->start(std::move(behaviour), label, ActivityRunner::Policy::kRefuseIfBusy))
+    return true;
+  // Refused (another activity drives the robot; the runner said so): the last run stays shown.
+  setRunning(Running::kNone);
+  travel_ = std::move(travel);
+  building_ = std::move(building);
+  return false;
 }
 
 void PlanningController::setMapBuildingPaused(bool paused) {
@@ -321,7 +342,7 @@ void PlanningController::stopAll(const QString& reason) {
 }
 
 const MapBuildingBehaviour* PlanningController::mapBuilding() const {
-  return dynamic_cast<const MapBuildingBehaviour*>(behaviours_->behaviour());
+  return building_.get();
 }
 
 std::optional<double> PlanningController::coverage() const {
@@ -461,9 +482,9 @@ void PlanningController::refreshOverlay() {
 
 void PlanningController::refreshLive() {
   const BehaviourStatus status = behaviours_->status();
-  if (const auto* travel = dynamic_cast<const TravelBehaviour*>(behaviours_->behaviour())) {
-    if (travel->arrivals().size() != reached_ && running_ == Running::kGoal) {
-      reached_ = travel->arrivals().size();
+  if (travel_) {
+    if (travel_->arrivals().size() != reached_ && running_ == Running::kGoal) {
+      reached_ = travel_->arrivals().size();
       refreshOverlay();
     }
   }

@@ -18,7 +18,8 @@
 
 namespace irgs {
 class MapBuildingBehaviour;
-}
+class TravelBehaviour;
+}  // namespace irgs
 
 namespace irgs::widgets {
 class MapCanvas;
@@ -50,7 +51,7 @@ class PlanningController : public QObject {
   bool driveCoverage();
   bool startMapBuilding();
   void setMapBuildingPaused(bool paused);
-  // Stops whatever behaviour runs (the Stop buttons, the command panel's STOP, teleop stop).
+  // Stops the task this controller runs (its Stop and Abort buttons); STOP stops any activity.
   void stopAll(const QString& reason);
   // Writes the built grid as ROS PGM + YAML; returns an error message on failure.
   std::optional<QString> saveBuiltMap(const QString& yaml_path);
@@ -84,6 +85,10 @@ class PlanningController : public QObject {
   void onBehaviourFinished(bool failed, const QString& message);
   void onSample(const TelemetrySample& sample);
   void setRunning(Running running);
+  // Asks the session's runner to start the task's behaviour (one of the two); false, with the
+  // last run kept, when it refused.
+  bool startBehaviour(Running running, std::shared_ptr<TravelBehaviour> travel,
+                      std::shared_ptr<MapBuildingBehaviour> building, const QString& label);
   void saveBuiltMapInteractively();
   void keepBuiltGrid();
 
@@ -91,6 +96,9 @@ class PlanningController : public QObject {
   widgets::MapCanvas& canvas_;
   widgets::PlanningPanel& panel_;
   BehaviourController* behaviours_ = nullptr;
+  // The last behaviour this controller started, by kind (shared with the runner while it runs).
+  std::shared_ptr<TravelBehaviour> travel_;
+  std::shared_ptr<MapBuildingBehaviour> building_;
   PlanningSettings settings_;
 
   Running running_ = Running::kNone;

@@ -7,7 +7,6 @@
 #include <QMenuBar>
 
 #include "app/gui/link_controller.hpp"
-#include "app/gui/linked_robot_handle.hpp"
 #include "app/gui/localization_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "comms/mavlink/field_info.hpp"
@@ -60,12 +59,12 @@ QString PlotsController::mavlinkKey(const comms::MessageSample& message, std::si
 }
 
 void PlotsController::takeMessages() {
-  LinkedRobotHandle* handle = link_.handle();
-  if (handle == nullptr)
+  comms::MessageStream* messages = link_.messageStream();
+  if (messages == nullptr)
     return;
   // Message times are on the robot's sample clock; the session adds the same offset to samples.
   const double offset_s = session_.robotTimeOffset_s();
-  for (const comms::MessageSample& message : handle->takeMessages()) {
+  for (const comms::MessageSample& message : messages->takeMessages()) {
     const std::uint64_t stream = (static_cast<std::uint64_t>(message.message->id) << 32) |
                                  message.instance.value_or(0xFFFFFFFFu);
     auto it = stream_keys_.find(stream);

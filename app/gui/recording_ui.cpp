@@ -17,12 +17,11 @@
 #include <stdexcept>
 
 #include "app/gui/link_controller.hpp"
-#include "app/gui/linked_robot_handle.hpp"
 #include "app/recording/recording_reader.hpp"
 #include "app/recording/replay_player.hpp"
 #include "app/recording/rerun_parameters.hpp"
 #include "app/recording/session_recorder.hpp"
-#include "comms/robot/linked_robot.hpp"
+#include "comms/robot/remote_robot.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "comms/transport/replay_transport.hpp"
 #include "widgets/link/link_health_panel.hpp"
@@ -358,14 +357,16 @@ QString RecordingUi::openReplay(const QString& path, double speed) {
   RobotFactory factory = [io = io_, feed, url, name](
                              const WorldMap&,
                              const RobotProfile& profile) -> std::unique_ptr<Robot> {
-    comms::LinkedRobotConfig config;
-    config.link.make_transport = comms::replayTransportMaker(feed, "replay " + name);
-    config.link.session.timeout_s = kReplayHeartbeatTimeout_s;
-    config.messages = guiMessageSampling();
-    comms::LinkedRobot::OpenResult opened = comms::LinkedRobot::open(*io, url, profile, config);
+    comms::RemoteRobotConfig config;
+    config.mavlink.link.make_transport = comms::replayTransportMaker(feed, "replay " + name);
+    config.mavlink.link.session.timeout_s = kReplayHeartbeatTimeout_s;
+    config.mavlink.messages = guiMessageSampling();
+    config.name = "replay://" + name;
+    comms::OpenRemoteRobotResult opened =
+        comms::openRemoteRobot(io, url, profile, std::move(config));
     if (!opened.robot)
       throw std::runtime_error(opened.error);
-    return std::make_unique<LinkedRobotHandle>(io, std::move(opened.robot), "replay://" + name);
+    return std::move(opened.robot);
   };
   RobotFactory previous = session_.robotFactory();
   try {
@@ -422,8 +423,8 @@ void RecordingUi::onRobotReplacedElsewhere() {
   // Someone else replaced the replayed robot: the Reset action rebuilt it from our factory (the
   // new one has not seen the bytes so far: replay from the start), or a link or the simulator
   // took over (the replay ends where it is, the new robot stays).
-  const auto* handle = dynamic_cast<const LinkedRobotHandle*>(session_.robot());
-  if (handle != nullptr && handle->url().rfind("replay://", 0) == 0) {
+  const comms::RemoteRobot* remote = link_.remote();
+  if (remote != nullptr && remote->url().rfind("replay://", 0) == 0) {
     player_->seek(0.0);
     return;
   }
@@ -437,8 +438,8 @@ void RecordingUi::checkDrained() {
     return;
   }
   std::uint64_t samples = 0;
-  if (auto* handle = dynamic_cast<LinkedRobotHandle*>(session_.robot()))
-    samples = handle->rates().samples;
+  if (const comms::RemoteRobot* remote = link_.remote())
+    samples = remote->telemetryRates().samples;
   const bool delivered = feed_->deliveredBytes() + feed_->droppedBytes() >= feed_->pushedBytes();
   if (delivered && session_.pendingSamples() == 0 && samples == drain_samples_) {
     ++drain_stable_polls_;

@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "app/gui/event_format.hpp"
-#include "core/sim/simulated_robot.hpp"
 
 namespace irgs::gui {
 namespace {
@@ -45,6 +44,10 @@ SimulationControl* SessionController::simulationControl() {
   return robot_ ? robot_->simulationControl() : nullptr;
 }
 
+SimulatedWorld* SessionController::simulatedWorld() {
+  return robot_ ? robot_->simulatedWorld() : nullptr;
+}
+
 void SessionController::loadWorld(WorldMap map, const QString& source) {
   std::unique_ptr<Robot> robot = makeRobot(map);  // may throw: nothing has changed yet
   map_ = std::move(map);
@@ -61,8 +64,8 @@ void SessionController::loadWorld(WorldMap map, const QString& source) {
 }
 
 void SessionController::updateWorld(WorldMap map) {
-  if (auto* simulated = dynamic_cast<SimulatedRobot*>(robot_.get()))
-    simulated->setMap(map);
+  if (SimulatedWorld* world = simulatedWorld())
+    world->setWorld(map);
   map_ = std::move(map);
   emit worldEdited();
 }
@@ -100,7 +103,6 @@ void SessionController::installRobot(std::unique_ptr<Robot> robot) {
   last_bumpers_ = 0;
   blocked_ = false;
   command_ = {};
-  last_scheduled_.reset();  // a running schedule re-drives the new robot on the next update
   applySimulationSettings();
   last_shown_position_ = map_.start.position();
   // Show the robot at its start pose right away, even while paused.
@@ -110,6 +112,7 @@ void SessionController::installRobot(std::unique_ptr<Robot> robot) {
   if (simulationControl() != nullptr)
     initial.true_pose = map_.start;
   latest_ = initial;
+  runner_->onRobotReplaced();  // ends what ran on the old robot (a drive script carries on)
   emit robotReplaced();
   emit sampleIntegrated(initial);
   emit robotStateChanged(initial);
@@ -159,27 +162,11 @@ void SessionController::tick(double wall_elapsed_s) {
   emit ticked();
 }
 
-void SessionController::setCommandSchedule(CommandSchedule schedule) {
-  schedule_ = std::move(schedule);
-  last_scheduled_.reset();
-}
-
 double SessionController::applySchedule() {
-  if (!schedule_)
-    return std::numeric_limits<double>::infinity();
   // A change due at t applies from the step that starts at t: ask just after the robot's time
   // so floating-point noise in step times (3.9999999 for 4.0) cannot delay it by a step.
   constexpr double kTimeEpsilon_s = 1e-6;
-  const ScheduledCommand scheduled = schedule_(robot_time_s_ + kTimeEpsilon_s);
-  if (!last_scheduled_ || *last_scheduled_ != scheduled.command) {
-    last_scheduled_ = scheduled.command;  // only changes: the user may steer in between
-    drive(scheduled.command.linear_mps, scheduled.command.angular_radps);
-  }
-  if (!std::isfinite(scheduled.next_change_s)) {
-    schedule_ = nullptr;
-    emit commandScheduleFinished();
-  }
-  return scheduled.next_change_s;
+  return runner_->applyCommand(robot_time_s_ + kTimeEpsilon_s);
 }
 
 void SessionController::advanceRobot(double wall_s, const QElapsedTimer& tick_clock) {
@@ -221,8 +208,7 @@ void SessionController::advanceRobot(double wall_s, const QElapsedTimer& tick_cl
         step_s_ = std::clamp(sample.time_s - robot_time_s_, 1e-4, 1.0);
         robot_time_s_ = sample.time_s;
       }
-      if (sample_observer_)
-        sample_observer_(sample);
+      runner_->onSample(sample);
       pending_.push_back(std::move(sample));
     }
     if (max_speed) {
@@ -244,8 +230,7 @@ void SessionController::finishRobot() {
     for (TelemetrySample& sample : robot_->finish()) {
       sample.time_s += time_offset_s_;
       robot_time_s_ = std::max(robot_time_s_, sample.time_s);
-      if (sample_observer_)
-        sample_observer_(sample);
+      runner_->onSample(sample);
       pending_.push_back(std::move(sample));
     }
   }

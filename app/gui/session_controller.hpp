@@ -1,8 +1,10 @@
 #pragma once
-// One ground-station session: the robot (simulated today, linked later — this class only sees the
-// Robot interface), the world map, the robot profile, and the occupancy grid built from the
-// robot's sonar. A ~60 Hz timer advances the robot by the real elapsed time, integrates every
-// sample into the grid and reports the newest state and notable events.
+// One ground-station session: the robot (simulated or behind a link — this class only sees the
+// Robot interface and its capabilities), the world map, the robot profile, and the occupancy grid
+// built from the robot's sonar. A ~60 Hz timer advances the robot by the real elapsed time,
+// integrates every sample into the grid and reports the newest state and notable events. What
+// drives the robot on its own (a behaviour, a drive script, a mission) runs in the session's one
+// ActivityRunner, which sees every sample and is asked for the command before every robot update.
 
 #include <QElapsedTimer>
 #include <QObject>
@@ -10,11 +12,11 @@
 #include <QTimer>
 #include <deque>
 #include <functional>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "app/gui/activity_runner.hpp"
 #include "core/mapping/occupancy_grid.hpp"
 #include "core/mapping/sonar_mapper.hpp"
 #include "core/robot/robot.hpp"
@@ -41,16 +43,6 @@ class SessionController : public QObject {
   static constexpr int kMaxUpdatesPerTick = 64;           // robot->update() calls per tick
   static constexpr double kSensorLinePeriod_s = 0.5;      // sensor console lines, wall time
 
-  // A command schedule (a drive script), asked before every robot update with the robot's
-  // session time: the command in force and the session time of the next change (infinity
-  // after the last). The session splits robot updates at change times, so with a simulator
-  // at a finite speed every change takes effect on the step it is due, however the GUI ticks.
-  struct ScheduledCommand {
-    VelocityCommand command;
-    double next_change_s = std::numeric_limits<double>::infinity();
-  };
-  using CommandSchedule = std::function<ScheduledCommand(double robot_time_s)>;
-
   SessionController(RobotProfile profile, RobotFactory factory, QObject* parent = nullptr);
   ~SessionController() override;
 
@@ -60,8 +52,8 @@ class SessionController : public QObject {
   // unchanged.
   void loadWorld(WorldMap map, const QString& source);
   // Replaces the map in place (the map editor): the robot, its pose, the grid and the source
-  // stay; a simulated robot's world is swapped (SimulatedRobot::setMap) so the simulator runs on
-  // what is being edited. A linked robot does not use the map. Emits worldEdited().
+  // stay; a simulated robot's world is swapped (SimulatedWorld::setWorld) so the simulator runs
+  // on what is being edited. A linked robot does not use the map. Emits worldEdited().
   void updateWorld(WorldMap map);
   // Replaces the robot factory and, with a robot from it, the robot (simulator <-> linked
   // robot). Throws what the factory throws (std::invalid_argument for an empty factory); the
@@ -88,6 +80,8 @@ class SessionController : public QObject {
   Robot* robot() { return robot_.get(); }
   // Null when the robot's clock is not ours (a linked robot).
   SimulationControl* simulationControl();
+  // Null when the robot's world is not simulated here (a linked robot).
+  SimulatedWorld* simulatedWorld();
   const std::optional<TelemetrySample>& latestSample() const { return latest_; }
   // Time of the newest sample shown (integrated), s; monotonic across robot resets.
   double displayTime_s() const { return display_time_s_; }
@@ -101,17 +95,14 @@ class SessionController : public QObject {
   const VelocityCommand& command() const { return command_; }
   std::size_t pendingSamples() const { return pending_.size(); }
 
-  // Replaces the command schedule (an empty function clears it). The schedule is dropped, and
-  // commandScheduleFinished() emitted, once it reports no further change.
-  void setCommandSchedule(CommandSchedule schedule);
-  bool hasCommandSchedule() const { return static_cast<bool>(schedule_); }
-
-  // Called with every sample the robot produces, in order, as soon as advanceRobot() receives it
-  // (before the next schedule query and before the sample is integrated): a behaviour sees each
-  // sample exactly once and its answer applies from the next robot step. Times are session
-  // times. An empty function clears it.
-  using SampleObserver = std::function<void(const TelemetrySample& sample)>;
-  void setSampleObserver(SampleObserver observer) { sample_observer_ = std::move(observer); }
+  // The one owner of what drives the robot on its own. It gets every sample the robot produces,
+  // in order, as soon as advanceRobot() receives it (before the next command query and before
+  // the sample is integrated): an activity sees each sample exactly once and its answer applies
+  // from the next robot step. It is asked for the command before every robot update with the
+  // robot's session time, and answers with the time of the next change: the session splits
+  // robot updates there, so with a simulator at a finite speed every change takes effect on the
+  // step it is due, however the GUI ticks.
+  ActivityRunner& runner() { return *runner_; }
 
   // Starts/stops the periodic timer (tests drive tick() directly instead).
   void start();
@@ -149,7 +140,6 @@ class SessionController : public QObject {
   void pausedChanged(bool paused);
   void speedFactorChanged(double factor);
   void ticked();
-  void commandScheduleFinished();
 
  private:
   void onTimer();
@@ -158,7 +148,7 @@ class SessionController : public QObject {
   void applySimulationSettings();
   // Runs the robot for `wall_s` of wall time (split at schedule changes), queueing its samples.
   void advanceRobot(double wall_s, const QElapsedTimer& tick_clock);
-  // Applies the schedule's command for the robot's time; returns the next change time.
+  // Applies the runner's command for the robot's time; returns the next change time.
   double applySchedule();
   // Integrates pending samples until the tick budget is used (at least one); returns how many.
   std::size_t integratePending(const QElapsedTimer& tick_clock);
@@ -183,10 +173,6 @@ class SessionController : public QObject {
   double speed_factor_ = 1.0;
   VelocityCommand command_;
 
-  CommandSchedule schedule_;
-  SampleObserver sample_observer_;
-  std::optional<VelocityCommand> last_scheduled_;
-
   std::deque<TelemetrySample> pending_;
   std::optional<TelemetrySample> latest_;
   std::vector<std::optional<SonarReading>> last_sonar_;  // newest reading per sensor
@@ -199,6 +185,8 @@ class SessionController : public QObject {
   bool blocked_ = false;  // commanded to move but not moving, with a bumper pressed
   double blocked_since_s_ = 0.0;
   bool sensor_line_due_ = false;
+  // Last: destroyed first, while the session it calls is still whole.
+  std::unique_ptr<ActivityRunner> runner_ = std::make_unique<ActivityRunner>(*this);
 };
 
 }  // namespace irgs::gui

@@ -47,7 +47,7 @@ QString token(std::string_view text) {
 // What the status line says about the link, whichever protocol the session's robot speaks.
 struct LinkSummary {
   QString state = QStringLiteral("none");
-  TelemetryRates rates;
+  comms::TelemetryRates rates;
   std::uint32_t link_losses = 0;
   std::uint32_t reconnects = 0;
 };
@@ -246,7 +246,7 @@ PlanningController* StdinControl::planning() const {
 
 QString StdinControl::statusLine() const {
   const LinkSummary link = summarise(link_.controller());
-  const TelemetryRates& rates = link.rates;
+  const comms::TelemetryRates& rates = link.rates;
   QString line = QStringLiteral(
                      "status wall_s=%1 link=%2 samples=%3 odom_hz=%4 sonar_hz=%5 "
                      "sonar_readings_per_s=%6 explored_m2=%7")

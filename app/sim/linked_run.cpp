@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/sim/link_adapter.hpp"
+#include "comms/robot/remote_robot.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "core/mapping/sonar_mapper.hpp"
 #include "core/mission/mission_runner.hpp"
@@ -69,17 +69,18 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
     return out;
   }
   comms::IoThread io;
-  auto opened = openLinkAdapter(io, *url.url, spec.profile);
-  if (!opened.adapter) {
+  auto opened = comms::openRemoteRobot(io, *url.url, spec.profile);
+  if (!opened.robot) {
     out.error = "cannot open " + spec.url + ": " + opened.error;
     return out;
   }
-  LinkAdapter& link = *opened.adapter;
-  Robot& robot = link.robot();
-  out.protocol = std::string(link.protocol());
+  comms::RemoteRobot& robot = *opened.robot;
+  // Drains the samples that arrived, oldest first (the stop confirmation looks at them).
+  auto update = [&robot] { return robot.update(0.0); };
+  out.protocol = std::string(robot.protocol());
   std::string last_event;
   auto drainEvents = [&] {
-    for (const auto& e : link.takeEvents()) {
+    for (const auto& e : robot.takeEvents()) {
       last_event = e.text;
       log(std::string(comms::toString(e.kind)) + ": " + e.text);
     }
@@ -90,20 +91,20 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   const Clock::time_point connect_start = Clock::now();
   while (!cancelled()) {
     drainEvents();
-    for (auto& s : link.update())
+    for (auto& s : update())
       pending.push_back(std::move(s));
-    if (link.linkState() == comms::LinkState::kConnected && !pending.empty())
+    if (robot.linkState() == comms::LinkState::kConnected && !pending.empty())
       break;
     if (secondsSince(connect_start) > spec.connect_timeout_s) {
       const bool arcos = out.protocol == "arcos";
-      out.error = link.linkState() == comms::LinkState::kConnected
+      out.error = robot.linkState() == comms::LinkState::kConnected
                       ? "the robot at " + spec.url + " is connected but sent no odometry within " +
                             seconds(spec.connect_timeout_s) + " s"
                       : std::string(arcos ? "no ARCOS robot answered (SYNC/SIP) at "
                                           : "no robot heartbeat from ") +
                             spec.url + " within " + seconds(spec.connect_timeout_s) + " s" +
                             (last_event.empty() ? "" : " (last: " + last_event + ")");
-      out.link_stats = link.linkStats();
+      out.link_stats = robot.linkStats();
       return out;
     }
     std::this_thread::sleep_for(kScriptLoopPeriod);
@@ -216,7 +217,7 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
       command = spec.script.commandAt(elapsed);
       robot.drive(command);  // sent when it changes; the adapter repeats it while non-zero
     }
-    take(link.update());
+    take(update());
     if (spec.behaviour) {
       if (!b.phases.empty() && b.phases.back().phase != last_phase) {
         last_phase = b.phases.back().phase;
@@ -224,7 +225,7 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
       }
     }
     drainEvents();
-    const bool connected = link.linkState() == comms::LinkState::kConnected;
+    const bool connected = robot.linkState() == comms::LinkState::kConnected;
     if (connected && !was_connected)
       log(std::string("link back: the ") + (spec.behaviour ? "behaviour" : "script") +
           " continues at " + seconds(elapsed) + " s");
@@ -244,17 +245,17 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
 
   // 3. Stop the robot and wait (bounded) for the confirmation and the last samples.
   command = {};
-  link.requestStop();
+  robot.requestConfirmedStop();
   const Clock::time_point stop_start = Clock::now();
-  while (!link.stopConfirmed() && secondsSince(stop_start) < spec.stop_timeout_s) {
-    take(link.update());
+  while (!robot.stopConfirmed() && secondsSince(stop_start) < spec.stop_timeout_s) {
+    take(update());
     drainEvents();
     std::this_thread::sleep_for(kScriptLoopPeriod);
   }
-  out.stop_acknowledged = link.stopConfirmed().value_or(false);
+  out.stop_acknowledged = robot.stopConfirmed().value_or(false);
   if (!out.stop_acknowledged)
     log("warning: the robot did not confirm the final stop (its own watchdog stops it)");
-  take(link.update());
+  take(update());
   drainEvents();
   if (out.samples > 0 &&
       (result.trajectory.empty() || result.trajectory.back().time_s != last_row.time_s))
@@ -270,8 +271,8 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
   m.odometry_heading_error_rad = std::numeric_limits<double>::quiet_NaN();
   m.explored_area_m2 = result.grid.exploredArea_m2();
   b.wall_clock_s = spec.wall_clock ? spec.wall_clock() - wall_start : 0.0;
-  out.dropped_samples = link.droppedSamples();
-  out.link_stats = link.linkStats();
+  out.dropped_samples = robot.droppedSamples();
+  out.link_stats = robot.linkStats();
   out.result = std::move(result);
   return out;
 }

@@ -1,12 +1,13 @@
 #pragma once
 // `irgs-sim --connect URL`: a headless run against a linked robot instead of the in-process
-// simulator: MAVLink, or ARCOS/P2OS when the URL says ?protocol=arcos (app/sim/link_adapter.hpp).
-// Either a drive script runs on the wall clock (the robot's own clock runs at wall speed), or a
-// host mission (map building, goal, coverage: core/mission) runs through a MissionRunner exactly
-// as it does against the simulator: the robot runs the motion primitives it sends, the mission
-// reacts to the samples and reports that come back (late and sparse over a real link). Every sample
-// is integrated into the grid by the same SonarMapper as the in-process run, so the outputs
-// (writeScenarioOutputs, writeBehaviourOutputs) have the same form.
+// simulator: MAVLink, or ARCOS/P2OS when the URL says ?protocol=arcos
+// (comms/robot/remote_robot.hpp). Either a drive script runs on the wall clock (the robot's own
+// clock runs at wall speed), or a host mission (map building, goal, coverage: core/mission) runs
+// through a MissionRunner exactly as it does against the simulator: the robot runs the motion
+// primitives it sends, the mission reacts to the samples and reports that come back (late and
+// sparse over a real link). Every sample is integrated into the grid by the same SonarMapper as
+// the in-process run, so the outputs (writeScenarioOutputs, writeBehaviourOutputs) have the same
+// form.
 //
 // Frames: with `anchor` set, the odometry is re-expressed by the rigid transform that puts the
 // first sample at the anchor (the map-frame start pose): an ARCOS robot counts from (0, 0, 0) at

@@ -1,7 +1,9 @@
 #pragma once
-// The one robot interface the ground station drives. Two adapters implement it: the simulated
-// robot (in-process, core/sim/simulated_robot.hpp) and the linked robot (over MAVLink, comms/).
-// The GUI talks only to this interface and never knows which one it has.
+// The one robot interface the ground station drives. Two kinds implement it: the simulated
+// robot (in-process, core/sim/simulated_robot.hpp) and the robots at the far end of a link
+// (comms::RemoteRobot: MAVLink or ARCOS). The GUI talks only to this interface and never knows
+// which one it has: what differs is offered as optional capabilities (null where absent), never
+// found out by a cast (docs/decisions/robot-capabilities.md; ctest -R Layering checks it).
 
 #include <string>
 #include <vector>
@@ -11,6 +13,13 @@
 #include "core/robot/telemetry.hpp"
 
 namespace irgs {
+
+struct WorldMap;
+namespace comms {
+// A robot behind a link and its link's vocabulary (comms/robot/remote_robot.hpp). Named here
+// only as an incomplete type: core never uses it; the app layer, which links comms, does.
+class RemoteRobot;
+}  // namespace comms
 
 // Optional extra for robots whose clock the ground station owns (the simulator).
 class SimulationControl {
@@ -23,6 +32,21 @@ class SimulationControl {
   virtual double speedFactor() const = 0;
   // Advances exactly one simulator step even when paused.
   virtual void singleStep() = 0;
+};
+
+// Optional extra for robots that live in a world the ground station simulates: the world can be
+// swapped under the robot and the robot put somewhere by hand. The true pose needs no accessor:
+// such a robot's samples carry it (TelemetrySample::true_pose).
+class SimulatedWorld {
+ public:
+  virtual ~SimulatedWorld() = default;
+  // Replaces the world (the map editor's edits), the robot staying where it is.
+  virtual void setWorld(const WorldMap& map) = 0;
+  // Teleports the robot to `pose` (map frame); odometry restarts there and the robot stops.
+  // Throws std::invalid_argument for a non-finite pose.
+  virtual void resetPose(const Pose2& pose) = 0;
+  // Outlines (map frame) of the world's moving obstacles now, in map order.
+  virtual const std::vector<std::vector<Vec2>>& movingObstaclePolygons() const = 0;
 };
 
 class Robot {
@@ -50,6 +74,11 @@ class Robot {
 
   // Present only when the ground station owns the robot's clock.
   virtual SimulationControl* simulationControl() { return nullptr; }
+  // Present only when the ground station simulates the robot's world.
+  virtual SimulatedWorld* simulatedWorld() { return nullptr; }
+  // Present when the robot is at the far end of a link (MAVLink, ARCOS): link state, statistics,
+  // console events, telemetry rates, a confirmed stop and the link's optional capabilities.
+  virtual comms::RemoteRobot* remoteRobot() { return nullptr; }
   // Present when the robot runs motion primitives itself (motion_control.hpp).
   virtual MotionControl* motionControl() { return nullptr; }
 };

@@ -1,6 +1,6 @@
 #pragma once
 // The in-process robot: a Simulator behind the Robot interface, with the ground station owning
-// its clock (SimulationControl).
+// its clock (SimulationControl) and its world (SimulatedWorld).
 //
 // Time: update(wall_elapsed_s) advances simulated time by wall_elapsed_s * speedFactor(), in
 // whole fixed steps; the fraction of a step left over is carried to the next call, so the
@@ -29,7 +29,10 @@
 
 namespace irgs {
 
-class SimulatedRobot : public Robot, public SimulationControl, public MotionControl {
+class SimulatedRobot : public Robot,
+                       public SimulationControl,
+                       public SimulatedWorld,
+                       public MotionControl {
  public:
   static constexpr int kDefaultMaxSteps = 1000;
   static constexpr double kMaxWallStep_s = 1.0;
@@ -53,6 +56,7 @@ class SimulatedRobot : public Robot, public SimulationControl, public MotionCont
   std::vector<motion::MotionReport> takeReports() override;
   const motion::MotionExecutor& executor() const { return *executor_; }
   void setMotionSettings(const motion::MotionSettings& settings);
+  SimulatedWorld* simulatedWorld() override { return this; }
 
   // SimulationControl
   void setPaused(bool paused) override;
@@ -61,6 +65,13 @@ class SimulatedRobot : public Robot, public SimulationControl, public MotionCont
   void setSpeedFactor(double factor) override;
   double speedFactor() const override;
   void singleStep() override;
+
+  // SimulatedWorld
+  void setWorld(const WorldMap& map) override { setMap(map); }
+  void resetPose(const Pose2& pose) override { sim_.resetPose(pose); }
+  const std::vector<std::vector<Vec2>>& movingObstaclePolygons() const override {
+    return sim_.movingObstaclePolygons();
+  }
 
   // Steps per update() at speed factor 0; throws std::invalid_argument unless >= 1.
   void setMaxStepsPerUpdate(int steps);

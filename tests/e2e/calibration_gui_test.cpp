@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "app/gui/calibration_controller.hpp"
+#include "app/gui/drive_script_player.hpp"
 #include "app/gui/main_window.hpp"
 #include "app/gui/session_controller.hpp"
 #include "core/calibration/profile_calibration.hpp"
@@ -99,14 +100,15 @@ TEST_F(CalibrationGuiTest, TheUmbmarkWizardDrivesBothSquaresOnTheSessionRobotAnd
               1e-9);
 }
 
-TEST_F(CalibrationGuiTest, ASquareIsRefusedWhileAnotherScheduleDrivesTheRobot) {
+TEST_F(CalibrationGuiTest, ASquareIsRefusedWhileADriveScriptDrivesTheRobot) {
   widgets::UmbmarkWizard* wizard = calibration_->openUmbmarkWizard();
-  session_->setCommandSchedule([](double) {
-    return SessionController::ScheduledCommand{{0.1, 0.0}, 1e9};
-  });
+  const DriveScript script({{0.0, {0.1, 0.0}}, {1e9, {0.0, 0.0}}});
+  DriveScriptPlayer player(*session_, script);
+  ASSERT_TRUE(player.start());
   calibration_->driveSquare(UmbmarkSquareConfig{});
   EXPECT_FALSE(calibration_->squareRunning());
   EXPECT_TRUE(wizard->robotStatusText().contains(QStringLiteral("another behaviour")));
+  EXPECT_EQ(session_->runner().label(), QStringLiteral("Drive script"));  // still driving
 }
 
 TEST_F(CalibrationGuiTest, TheGyroWizardOpensFromTheMenuForTheSessionProfile) {

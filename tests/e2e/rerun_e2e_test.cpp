@@ -164,7 +164,7 @@ TEST_F(RerunEndToEnd, DefaultsReproduceTheLiveSessionAndChangedParametersChangeT
     }
   }
   // By robot time in microseconds since the first sample: the session's clock of a linked robot
-  // (LinkedRobotHandle) starts at its first sample, which is what --trajectory-out writes.
+  // (MavlinkRemoteRobot) starts at its first sample, which is what --trajectory-out writes.
   std::map<long long, Pose> rerun_poses;
   {
     std::ifstream in(same / "recorded_trajectory.csv");
