@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "app/gui/behaviour_activity.hpp"
+#include "app/gui/mission_activity.hpp"
 #include "app/gui/session_controller.hpp"
 
 namespace irgs::gui {
@@ -29,6 +30,8 @@ bool BehaviourController::paused() const {
 }
 
 BehaviourStatus BehaviourController::status() const {
+  if (mission_)
+    return mission_->status();
   return behaviour_ ? behaviour_->status() : BehaviourStatus{};
 }
 
@@ -37,9 +40,25 @@ bool BehaviourController::start(std::shared_ptr<Behaviour> behaviour, const QStr
   if (!behaviour)
     return false;
   auto activity = std::make_unique<BehaviourActivity>(behaviour);
+  return launch(std::move(activity), std::move(behaviour), nullptr, label, policy);
+}
+
+bool BehaviourController::start(std::shared_ptr<Mission> mission, const QString& label,
+                                ActivityRunner::Policy policy) {
+  if (!mission)
+    return false;
+  auto activity = std::make_unique<MissionActivity>(mission);
+  return launch(std::move(activity), nullptr, std::move(mission), label, policy);
+}
+
+bool BehaviourController::launch(std::unique_ptr<Activity> activity,
+                                 std::shared_ptr<Behaviour> behaviour,
+                                 std::shared_ptr<Mission> mission, const QString& label,
+                                 ActivityRunner::Policy policy) {
   // Set before the runner starts it: a behaviour with nothing to do finishes at once, and that
   // must reach this controller's finished() like any other end.
   std::shared_ptr<Behaviour> previous = std::exchange(behaviour_, std::move(behaviour));
+  std::shared_ptr<Mission> previous_mission = std::exchange(mission_, std::move(mission));
   const QString previous_label = std::exchange(label_, label);
   const std::string previous_message = std::exchange(last_message_, std::string());
   ActivityRunner::Id id = 0;
@@ -47,8 +66,9 @@ bool BehaviourController::start(std::shared_ptr<Behaviour> behaviour, const QStr
     const QScopedValueRollback<bool> starting(starting_, true);
     id = runner_.start(std::move(activity), label, policy);
   }
-  if (id == 0) {  // refused: the last behaviour stays the one to look at
+  if (id == 0) {  // refused: the last one stays the one to look at
     behaviour_ = std::move(previous);
+    mission_ = std::move(previous_mission);
     label_ = previous_label;
     last_message_ = previous_message;
     return false;
@@ -74,9 +94,9 @@ void BehaviourController::setPaused(bool paused) {
 }
 
 void BehaviourController::onSampleConsumed(ActivityRunner::Id id, const TelemetrySample& sample) {
-  if (id != id_ || !behaviour_)
+  if (id != id_ || (!behaviour_ && !mission_))
     return;
-  const BehaviourStatus status = behaviour_->status();
+  const BehaviourStatus status = this->status();
   emit sampleConsumed(sample);
   if (status.message != last_message_) {
     last_message_ = status.message;

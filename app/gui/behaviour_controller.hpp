@@ -12,6 +12,7 @@
 
 #include "app/gui/activity_runner.hpp"
 #include "core/behaviour/behaviour.hpp"
+#include "core/mission/mission.hpp"
 #include "core/robot/telemetry.hpp"
 
 namespace irgs::gui {
@@ -30,6 +31,9 @@ class BehaviourController : public QObject {
   // sees the robot's next sample. False when the runner refused it (a console line says why).
   bool start(std::shared_ptr<Behaviour> behaviour, const QString& label,
              ActivityRunner::Policy policy = ActivityRunner::Policy::kRefuseIfBusy);
+  // The same for a host mission on motion primitives (map building, goal travel, coverage).
+  bool start(std::shared_ptr<Mission> mission, const QString& label,
+             ActivityRunner::Policy policy = ActivityRunner::Policy::kRefuseIfBusy);
   // Stops the robot and the behaviour; no-op when this controller's behaviour does not run. The
   // behaviour object stays available through behaviour() until the next start().
   void abort(const QString& reason);
@@ -38,9 +42,10 @@ class BehaviourController : public QObject {
   bool running() const { return running_; }
   bool paused() const;
   const QString& label() const { return label_; }
-  // The current (or last finished) behaviour, or null.
+  // The current (or last finished) behaviour or mission, or null (one of them is set).
   Behaviour* behaviour() { return behaviour_.get(); }
   const Behaviour* behaviour() const { return behaviour_.get(); }
+  const Mission* mission() const { return mission_.get(); }
   BehaviourStatus status() const;
 
  signals:
@@ -55,12 +60,16 @@ class BehaviourController : public QObject {
   void finished(bool failed, const QString& message);
 
  private:
+  bool launch(std::unique_ptr<Activity> activity, std::shared_ptr<Behaviour> behaviour,
+              std::shared_ptr<Mission> mission, const QString& label,
+              ActivityRunner::Policy policy);
   void onStarted(ActivityRunner::Id id);
   void onSampleConsumed(ActivityRunner::Id id, const TelemetrySample& sample);
   void onFinished(ActivityRunner::Id id, bool failed, const QString& message);
 
   ActivityRunner& runner_;
   std::shared_ptr<Behaviour> behaviour_;
+  std::shared_ptr<Mission> mission_;
   QString label_;
   ActivityRunner::Id id_ = 0;  // of the last behaviour started here
   bool starting_ = false;      // inside start(): the runner's next started() is ours

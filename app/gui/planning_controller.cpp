@@ -10,13 +10,29 @@
 
 #include "app/gui/behaviour_controller.hpp"
 #include "app/gui/session_controller.hpp"
-#include "core/behaviour/map_building.hpp"
-#include "core/behaviour/travel_behaviour.hpp"
 #include "core/mapping/grid_export.hpp"
+#include "core/mission/map_building_mission.hpp"
+#include "core/mission/travel_mission.hpp"
+#include "core/motion/motion_settings.hpp"
 #include "widgets/canvas/map_canvas.hpp"
 #include "widgets/planning/planning_panel.hpp"
 
 namespace irgs::gui {
+namespace {
+
+// The turning points of a travel plan: where it starts, then every segment's end.
+std::vector<Vec2> turningPoints(const TravelPlan& plan) {
+  std::vector<Vec2> points;
+  if (plan.segments.empty())
+    return points;
+  points.push_back(plan.segments.front().from);
+  for (const TravelSegment& s : plan.segments)
+    points.push_back(s.to);
+  return points;
+}
+
+}  // namespace
+
 namespace {
 
 using widgets::MapCanvas;
@@ -50,10 +66,11 @@ PlanningController::PlanningController(SessionController& session, MapCanvas& ca
                                        PlanningPanel& panel, QObject* parent)
     : QObject(parent), session_(session), canvas_(canvas), panel_(panel) {
   behaviours_ = new BehaviourController(session_, this);
-  // Plan with the speeds the robot will drive at, so the estimated times are its times.
-  const TravelOptions travel = travelOptionsFor(session_.profile());
-  settings_.time_model.speed_mps = travel.max_speed_mps;
-  settings_.time_model.turn_rate_radps = travel.max_turn_rate_radps;
+  // Plan with the speeds the robot will drive at (its segments primitive: the mission's cruise
+  // speed, the robot's default turn rate), so the estimated times are its times.
+  settings_.time_model.speed_mps = travelConfig(0.0).speed_mps;
+  settings_.time_model.turn_rate_radps = std::min(motion::MotionSettings{}.turn_rate_radps,
+                                                  session_.profile().limits.max_turn_rate_radps);
   connectAll();
   setRunning(Running::kNone);
 }
@@ -156,7 +173,7 @@ std::optional<PlanningGrids> PlanningController::currentGrids() {
       case PlanSource::kSonarGrid:
         return gridsFromOccupancy(session_.grid(), radius, settings_, "sonar grid");
       case PlanSource::kBuiltMap:
-        if (const MapBuildingBehaviour* building = mapBuilding())
+        if (const MapBuildingMission* building = mapBuilding())
           return gridsFromOccupancy(building->grid(), radius, settings_, "built map");
         if (built_grid_)
           return gridsFromOccupancy(*built_grid_, radius, settings_, "built map");
@@ -206,13 +223,12 @@ bool PlanningController::driveGoal() {
     return false;
   if (!planGoal(*goal_))  // from where the robot is now
     return false;
-  std::shared_ptr<TravelBehaviour> travel;
+  std::shared_ptr<TravelMission> travel;
   try {
     // A goal path also stops for what the map did not show (forward sonars); coverage lanes
     // end near walls on purpose, so they rely on the bumpers and the watchdog only.
-    TravelOptions options = travelOptionsFor(session_.profile());
-    options.stop_distance_m = kGoalStopDistance_m;
-    travel = std::make_shared<TravelBehaviour>(session_.profile(), goal_preview_->travel, options);
+    travel = std::make_shared<TravelMission>(turningPoints(goal_preview_->travel),
+                                             travelConfig(kGoalStopDistance_m));
   } catch (const std::exception& e) {
     session_.report(EventLevel::kError, tr("Cannot drive this path: %1").arg(e.what()));
     return false;
@@ -267,9 +283,9 @@ bool PlanningController::driveCoverage() {
   if (!planRegion(*region_))
     return false;
   const CoveragePreview& c = *coverage_preview_;
-  std::shared_ptr<TravelBehaviour> travel;
+  std::shared_ptr<TravelMission> travel;
   try {
-    travel = std::make_shared<TravelBehaviour>(c.travel, travelOptionsFor(session_.profile()));
+    travel = std::make_shared<TravelMission>(turningPoints(c.travel), travelConfig(0.0));
     sweep_.emplace(c.region_raw, c.region_inflated, c.region_start,
                    session_.profile().bodyRadius());
   } catch (const std::exception& e) {
@@ -291,9 +307,9 @@ bool PlanningController::driveCoverage() {
 bool PlanningController::startMapBuilding() {
   if (running_ != Running::kNone)
     return false;
-  std::shared_ptr<MapBuildingBehaviour> building;
+  std::shared_ptr<MapBuildingMission> building;
   try {
-    building = std::make_shared<MapBuildingBehaviour>(session_.profile());
+    building = std::make_shared<MapBuildingMission>(session_.profile());
   } catch (const std::exception& e) {
     session_.report(EventLevel::kError, tr("Map building cannot run: %1").arg(e.what()));
     return false;
@@ -307,18 +323,18 @@ bool PlanningController::startMapBuilding() {
   return true;
 }
 
-bool PlanningController::startBehaviour(Running running, std::shared_ptr<TravelBehaviour> travel,
-                                        std::shared_ptr<MapBuildingBehaviour> building,
+bool PlanningController::startBehaviour(Running running, std::shared_ptr<TravelMission> travel,
+                                        std::shared_ptr<MapBuildingMission> building,
                                         const QString& label) {
-  std::shared_ptr<Behaviour> behaviour = building;
-  if (!behaviour)
-    behaviour = travel;
+  std::shared_ptr<Mission> mission = building;
+  if (!mission)
+    mission = travel;
   // Set first: a behaviour with nothing to do finishes inside start(), and its end is shown as
   // this task's.
   setRunning(running);
   std::swap(travel_, travel);
   std::swap(building_, building);
-  if (behaviours_->start(std::move(behaviour), label, ActivityRunner::Policy::kRefuseIfBusy))
+  if (behaviours_->start(std::move(mission), label, ActivityRunner::Policy::kRefuseIfBusy))
     return true;
   // Refused (another activity drives the robot; the runner said so): the last run stays shown.
   setRunning(Running::kNone);
@@ -341,7 +357,16 @@ void PlanningController::stopAll(const QString& reason) {
     behaviours_->abort(reason);
 }
 
-const MapBuildingBehaviour* PlanningController::mapBuilding() const {
+TravelMissionConfig PlanningController::travelConfig(double stop_distance_m) const {
+  TravelMissionConfig config;
+  config.speed_mps =
+      std::min(TravelMissionConfig{}.speed_mps, session_.profile().limits.max_speed_mps);
+  config.turn_quantum_rad = settings_.turn_quantum_rad;
+  config.stop_distance_m = stop_distance_m;
+  return config;
+}
+
+const MapBuildingMission* PlanningController::mapBuilding() const {
   return building_.get();
 }
 
@@ -381,7 +406,7 @@ void PlanningController::onBehaviourFinished(bool failed, const QString& message
 }
 
 void PlanningController::keepBuiltGrid() {
-  if (const MapBuildingBehaviour* building = mapBuilding()) {
+  if (const MapBuildingMission* building = mapBuilding()) {
     built_grid_ = building->grid();
     built_indices_ = building->allIndices();
     panel_.setBuiltMapAvailable(!built_grid_->observedCellRect().empty());
@@ -470,7 +495,7 @@ void PlanningController::refreshOverlay() {
   if (cover && coverage_preview_ && coverage_preview_->ok)
     overlay.coverage_path = coverage_preview_->path;
   if (build) {
-    if (const MapBuildingBehaviour* building = mapBuilding())
+    if (const MapBuildingMission* building = mapBuilding())
       overlay.indices = building->allIndices();
     else
       overlay.indices = built_indices_;
@@ -483,14 +508,14 @@ void PlanningController::refreshOverlay() {
 void PlanningController::refreshLive() {
   const BehaviourStatus status = behaviours_->status();
   if (travel_) {
-    if (travel_->arrivals().size() != reached_ && running_ == Running::kGoal) {
-      reached_ = travel_->arrivals().size();
+    if (travel_->reached() != reached_ && running_ == Running::kGoal) {
+      reached_ = travel_->reached();
       refreshOverlay();
     }
   }
   if (running_ == Running::kCoverage || sweep_)
     panel_.setCoverage(coverage());
-  if (const MapBuildingBehaviour* building = mapBuilding()) {
+  if (const MapBuildingMission* building = mapBuilding()) {
     QString phase = QString::fromStdString(status.phase);
     if (running_ == Running::kMapBuilding && behaviours_->paused())
       phase += tr(" (paused)");
@@ -508,7 +533,7 @@ void PlanningController::refreshLive() {
 
 std::optional<QString> PlanningController::saveBuiltMap(const QString& yaml_path) {
   const OccupancyGrid* grid = nullptr;
-  if (const MapBuildingBehaviour* building = mapBuilding())
+  if (const MapBuildingMission* building = mapBuilding())
     grid = &building->grid();
   else if (built_grid_)
     grid = &*built_grid_;

@@ -1,11 +1,11 @@
 #pragma once
 // The planning modes of the window, wired between the session, the map canvas and the planning
 // panel: click-to-goal (preview the raw A* path beside the amended one, then drive it with
-// TravelBehaviour), coverage of a dragged region (preview, drive, live swept %), and map
-// building (MapBuildingBehaviour: start, pause, abort, phase/progress, indices on the canvas,
-// save the built grid as a ROS map). Planning runs on the GUI thread inside a wall-time budget
-// (PlanningSettings::budget_s; A* returns its best partial path when it runs out), so the
-// window never waits longer than that for a preview.
+// TravelMission on the robot's segments primitive), coverage of a dragged region (preview, drive,
+// live swept %), and map building (MapBuildingMission: start, pause, abort, phase/progress, indices
+// on the canvas, save the built grid as a ROS map). Planning runs on the GUI thread inside a
+// wall-time budget (PlanningSettings::budget_s; A* returns its best partial path when it runs out),
+// so the window never waits longer than that for a preview.
 
 #include <QObject>
 #include <QString>
@@ -17,8 +17,9 @@
 #include "core/robot/telemetry.hpp"
 
 namespace irgs {
-class MapBuildingBehaviour;
-class TravelBehaviour;
+class MapBuildingMission;
+class TravelMission;
+struct TravelMissionConfig;
 }  // namespace irgs
 
 namespace irgs::widgets {
@@ -61,7 +62,7 @@ class PlanningController : public QObject {
   // Live coverage of the region, 0..1, once a coverage run started.
   std::optional<double> coverage() const;
   BehaviourController& behaviours() { return *behaviours_; }
-  const MapBuildingBehaviour* mapBuilding() const;
+  const MapBuildingMission* mapBuilding() const;
   const std::optional<OccupancyGrid>& builtGrid() const { return built_grid_; }
   const PlanningSettings& settings() const { return settings_; }
   // Replaces the settings (the parameters panel); the next plan uses them. The travel speeds
@@ -87,8 +88,10 @@ class PlanningController : public QObject {
   void setRunning(Running running);
   // Asks the session's runner to start the task's behaviour (one of the two); false, with the
   // last run kept, when it refused.
-  bool startBehaviour(Running running, std::shared_ptr<TravelBehaviour> travel,
-                      std::shared_ptr<MapBuildingBehaviour> building, const QString& label);
+  bool startBehaviour(Running running, std::shared_ptr<TravelMission> travel,
+                      std::shared_ptr<MapBuildingMission> building, const QString& label);
+  // Goal travel and coverage on the robot's segments primitive: the planning settings' quantum.
+  TravelMissionConfig travelConfig(double stop_distance_m) const;
   void saveBuiltMapInteractively();
   void keepBuiltGrid();
 
@@ -97,8 +100,8 @@ class PlanningController : public QObject {
   widgets::PlanningPanel& panel_;
   BehaviourController* behaviours_ = nullptr;
   // The last behaviour this controller started, by kind (shared with the runner while it runs).
-  std::shared_ptr<TravelBehaviour> travel_;
-  std::shared_ptr<MapBuildingBehaviour> building_;
+  std::shared_ptr<TravelMission> travel_;
+  std::shared_ptr<MapBuildingMission> building_;
   PlanningSettings settings_;
 
   Running running_ = Running::kNone;

@@ -22,7 +22,7 @@
 #include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "comms/robot/arcos_robot.hpp"
-#include "core/behaviour/map_building.hpp"
+#include "core/mission/map_building_mission.hpp"
 #include "core/geometry/types.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
@@ -276,7 +276,7 @@ QString StdinControl::statusLine() const {
   double distance_m = 0.0;
   int obstacles = 0;
   if (PlanningController* planning = this->planning()) {
-    if (const MapBuildingBehaviour* building = planning->mapBuilding()) {
+    if (const MapBuildingMission* building = planning->mapBuilding()) {
       phase = token(toString(building->phase()));
       const bool ended = building->phase() == MapBuildingPhase::kDone ||
                          building->phase() == MapBuildingPhase::kFailed;

@@ -8,7 +8,7 @@
 //     at the profile's 10 Hz with sonar; teleop moves the robot and the live sonar grid grows;
 //     a GUI killed while driving leaves the robot to ARCOS's PULSE watchdog, which stops it
 //     watchdog_s after the last command (not sooner: PULSEs and VELs kept it alive until then).
-//  2. Map building (the Plan tab's MapBuildingBehaviour, host side) runs through ARCOS on the
+//  2. Map building (the Plan tab's MapBuildingMission, host side) runs through ARCOS on the
 //     bundled 2.5 m thesis arena and completes: outline closed, the box circumnavigated, the
 //     built map saved.
 //

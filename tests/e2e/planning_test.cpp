@@ -20,7 +20,7 @@
 #include "app/gui/main_window.hpp"
 #include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
-#include "core/behaviour/map_building.hpp"
+#include "core/mission/map_building_mission.hpp"
 #include "core/world/map_file.hpp"
 #include "tests/e2e/app_test_support.hpp"
 #include "widgets/canvas/map_canvas.hpp"
