@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -19,10 +21,11 @@ using testing::Recorder;
 struct Server {
   Recorder rec;
   std::unique_ptr<Transport> transport;
-  Server(IoThread& io, std::uint16_t port) {
+  Server(IoThread& io, std::uint16_t port, PeerPolicy peers = {}, std::string host = "127.0.0.1") {
     TcpServerOptions o;
-    o.host = "127.0.0.1";
+    o.host = std::move(host);
     o.port = port;
+    o.peers = std::move(peers);
     transport = makeTcpServerTransport(io, o, rec.callbacks());
     transport->open();
   }
@@ -90,22 +93,97 @@ TEST(TcpTransport, ClientReconnectsAfterTheServerRestartsOnTheSamePort) {
   EXPECT_EQ(asText(server->rec.bytes()), "back");
 }
 
-TEST(TcpTransport, ServerReplacesItsClientWithANewOne) {
+// Issue 24, "who may drive": a second client never takes over the connected one unannounced.
+TEST(TcpTransport, ServerRefusesASecondClientWhileTheFirstIsConnected) {
   IoThread io;
   Server server(io, 0);
   const auto port = server.port();
   Client first(io, port);
   ASSERT_TRUE(first.rec.waitState(TransportState::kOpen));
   ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(first.transport->send(asBytes("one")));
+  ASSERT_TRUE(server.rec.waitBytes(3));
+
+  Client second(io, port);
+  ASSERT_TRUE(second.rec.waitState(TransportState::kOpen));  // the OS accepts, then we close
+  second.transport->send(asBytes("two"));
+  ASSERT_TRUE(server.rec.waitRefused(1)) << server.rec.allMessages();
+  ASSERT_TRUE(second.rec.waitState(TransportState::kFailed)) << second.rec.allMessages();
+  EXPECT_EQ(server.rec.refused().front(),
+            "127.0.0.1:" + std::to_string(second.transport->localPort()));
+  EXPECT_EQ(server.transport->stats().refused_peers, 1u);
+  EXPECT_EQ(server.rec.count(TransportState::kOpen), 1u) << server.rec.allMessages();
+
+  // The first client still has the server, and nothing of the second one was delivered.
+  ASSERT_TRUE(first.transport->send(asBytes("ONE")));
+  ASSERT_TRUE(server.rec.waitBytes(6));
+  EXPECT_EQ(asText(server.rec.bytes()), "oneONE");
+  ASSERT_TRUE(server.transport->send(asBytes("to first")));
+  ASSERT_TRUE(first.rec.waitBytes(8));
+  EXPECT_EQ(asText(first.rec.bytes()), "to first");
+  EXPECT_EQ(first.transport->state(), TransportState::kOpen);
+  EXPECT_TRUE(second.rec.bytes().empty());
+}
+
+TEST(TcpTransport, ARefusedClientReadsTheRefusalBytesBeforeItsConnectionCloses) {
+  IoThread io;
+  PeerPolicy peers;
+  peers.refusal_bytes = [](const std::string& peer) {
+    const std::string text = "busy, refused " + peer;
+    return std::vector<std::uint8_t>(text.begin(), text.end());
+  };
+  Server server(io, 0, peers);
+  const auto port = server.port();
+  Client first(io, port);
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
   Client second(io, port);
   ASSERT_TRUE(second.rec.waitState(TransportState::kOpen));
-  ASSERT_TRUE(server.rec.waitMessage("replaced the previous client")) << server.rec.allMessages();
-  // The old client is disconnected; the server now talks to the new one only.
+  // It keeps sending (unread input must not turn the close into a reset that eats the refusal).
+  for (int i = 0; i < 50; ++i)
+    second.transport->send(asBytes("frame frame frame"));
+  ASSERT_TRUE(second.rec.waitState(TransportState::kFailed)) << second.rec.allMessages();
+  const std::string expected =
+      "busy, refused 127.0.0.1:" + std::to_string(second.transport->localPort());
+  EXPECT_EQ(asText(second.rec.bytes()), expected);
+  EXPECT_TRUE(first.rec.bytes().empty());
+}
+
+TEST(TcpTransport, ServerTakesANewClientWhenTheConnectedOneHasGoneSilent) {
+  IoThread io;
+  std::atomic<bool> first_active{true};
+  PeerPolicy peers;
+  peers.peer_active = [&first_active] { return first_active.load(); };
+  Server server(io, 0, peers);
+  const auto port = server.port();
+  Client first(io, port);
+  ASSERT_TRUE(first.rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+  {
+    Client refused(io, port);
+    ASSERT_TRUE(server.rec.waitRefused(1));
+  }
+
+  first_active = false;  // e.g. irgs-robot: no ground-station heartbeat for its timeout
+  Client second(io, port);
+  ASSERT_TRUE(server.rec.waitMessage("had gone silent")) << server.rec.allMessages();
   ASSERT_TRUE(first.rec.waitState(TransportState::kFailed)) << first.rec.allMessages();
   ASSERT_TRUE(server.transport->send(asBytes("to second")));
   ASSERT_TRUE(second.rec.waitBytes(9));
   EXPECT_EQ(asText(second.rec.bytes()), "to second");
   EXPECT_TRUE(first.rec.bytes().empty());
+  EXPECT_EQ(server.transport->stats().refused_peers, 1u);
+}
+
+TEST(TcpTransport, ServerListensOnLoopbackUnlessGivenAnAddress) {
+  IoThread io;
+  Server loopback(io, 0, {}, "");
+  ASSERT_TRUE(loopback.rec.waitMessage("listening on 127.0.0.1:")) << loopback.rec.allMessages();
+  EXPECT_EQ(loopback.transport->description(), "tcp server 127.0.0.1:0");
+  Server every(io, 0, {}, "0.0.0.0");
+  ASSERT_TRUE(every.rec.waitMessage("listening on 0.0.0.0:")) << every.rec.allMessages();
+  // Reachable on loopback in both cases.
+  Client client(io, every.transport->localPort());
+  ASSERT_TRUE(every.rec.waitState(TransportState::kOpen)) << every.rec.allMessages();
 }
 
 TEST(TcpTransport, ServerKeepsListeningWhenItsClientLeaves) {
