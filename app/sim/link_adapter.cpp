@@ -90,9 +90,14 @@ class ArcosAdapter final : public LinkAdapter {
 }  // namespace
 
 OpenLinkResult openLinkAdapter(comms::IoThread& io, const comms::LinkUrl& url,
-                               const RobotProfile& profile) {
+                               const RobotProfile& profile,
+                               std::optional<comms::mavlink::SigningKey> signing_key) {
   OpenLinkResult out;
   if (comms::isArcosUrl(url)) {
+    if (signing_key) {
+      out.error = "a signing key is MAVLink's: ARCOS has no signing";
+      return out;
+    }
     auto opened = comms::ArcosRobot::open(io, url, profile);
     if (opened.robot)
       out.adapter = std::make_unique<ArcosAdapter>(std::move(opened.robot));
@@ -100,7 +105,10 @@ OpenLinkResult openLinkAdapter(comms::IoThread& io, const comms::LinkUrl& url,
       out.error = std::move(opened.error);
     return out;
   }
-  auto opened = comms::LinkedRobot::open(io, url, profile);
+  comms::LinkedRobotConfig config;
+  config.link.signing_key = signing_key;
+  config.link.require_signed = signing_key.has_value();
+  auto opened = comms::LinkedRobot::open(io, url, profile, std::move(config));
   if (opened.robot)
     out.adapter = std::make_unique<MavlinkAdapter>(std::move(opened.robot));
   else

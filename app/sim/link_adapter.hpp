@@ -17,6 +17,7 @@
 
 #include "comms/link/link_types.hpp"
 #include "comms/link/link_url.hpp"
+#include "comms/mavlink/signing.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "core/robot/robot.hpp"
 
@@ -48,8 +49,10 @@ struct OpenLinkResult {
 };
 
 // Opens the robot the URL names (it connects, and reconnects, on its own from then on). `io`
-// must outlive the adapter.
+// must outlive the adapter. With `signing_key` the MAVLink link signs what it sends and accepts
+// only frames signed with the key; an ARCOS URL with a key is an error (ARCOS has no signing).
 OpenLinkResult openLinkAdapter(comms::IoThread& io, const comms::LinkUrl& url,
-                               const RobotProfile& profile);
+                               const RobotProfile& profile,
+                               std::optional<comms::mavlink::SigningKey> signing_key = {});
 
 }  // namespace irgs::app

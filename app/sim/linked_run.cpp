@@ -73,7 +73,7 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
     return out;
   }
   comms::IoThread io;
-  auto opened = openLinkAdapter(io, *url.url, spec.profile);
+  auto opened = openLinkAdapter(io, *url.url, spec.profile, spec.signing_key);
   if (!opened.adapter) {
     out.error = "cannot open " + spec.url + ": " + opened.error;
     return out;
