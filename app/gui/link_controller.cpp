@@ -45,9 +45,9 @@ QString LinkController::connectTo(const QString& url) {
     simulator_factory_ = session_.robotFactory();
   const std::string text = parsed.url->toString();
   connected_url_ = QString::fromStdString(text);
-  RobotFactory factory = [io = io_, link_url = *parsed.url, text, tap = frame_tap_](
-                             const WorldMap& world,
-                             const RobotProfile& profile) -> std::unique_ptr<Robot> {
+  RobotFactory factory =
+      [io = io_, link_url = *parsed.url, text, tap = frame_tap_, signing = signing_key_](
+          const WorldMap& world, const RobotProfile& profile) -> std::unique_ptr<Robot> {
     if (comms::isArcosUrl(link_url)) {
       // A Pioneer over ARCOS (docs/pioneer.md): a plain Robot that keeps the io thread alive.
       // ARCOS counts from (0, 0, 0) at OPEN: the robot is taken to stand at the map's start
@@ -61,6 +61,8 @@ QString LinkController::connectTo(const QString& url) {
     }
     comms::LinkedRobotConfig config;
     config.link.tap = tap;
+    config.link.signing_key = signing;
+    config.link.require_signed = signing.has_value();
     config.messages = guiMessageSampling();
     comms::LinkedRobot::OpenResult opened =
         comms::LinkedRobot::open(*io, link_url, profile, std::move(config));

@@ -8,11 +8,13 @@
 #include <QString>
 #include <QTimer>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "app/gui/linked_robot_handle.hpp"
 #include "app/gui/session_controller.hpp"
 #include "comms/link/frame_tap.hpp"
+#include "comms/mavlink/signing.hpp"
 #include "widgets/link/connection_dialog.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
@@ -41,6 +43,9 @@ class LinkController : public QObject {
   // Links opened by later connectTo() calls report their bytes to `tap` (session recording);
   // an empty function: none.
   void setFrameTap(comms::FrameTap tap) { frame_tap_ = std::move(tap); }
+  // MAVLink links opened by later connectTo() calls sign with `key` and accept only frames
+  // signed with it; nothing: unsigned. ARCOS links are never signed.
+  void setSigningKey(std::optional<comms::mavlink::SigningKey> key) { signing_key_ = key; }
 
   // A robot behind a link: MAVLink (handle()) or ARCOS (arcosRobot()).
   bool linked() const { return handle() != nullptr || arcosRobot() != nullptr; }
@@ -73,6 +78,7 @@ class LinkController : public QObject {
   std::shared_ptr<comms::IoThread> io_;  // created on the first connection
   RobotFactory simulator_factory_;
   comms::FrameTap frame_tap_;
+  std::optional<comms::mavlink::SigningKey> signing_key_;
   QTimer poll_timer_;
   QString connected_url_;  // the URL of the last connectTo()
   bool was_linked_ = false;
