@@ -8,7 +8,10 @@
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/write.hpp>
 
+#include <sys/socket.h>
+
 #include <array>
+#include <cerrno>
 #include <vector>
 
 namespace irgs::comms {
@@ -282,6 +285,11 @@ class TcpServerCore final : public TcpStreamCore {
       fail("accept failed on " + listening_ + ": " + ec.message());
       return;
     }
+    if (socket_.is_open() && peerHasClosed()) {
+      // A client reconnecting: its FIN and the new SYN arrive together, and the accept may
+      // complete before the read that would see the FIN. It has left; do not refuse its return.
+      onConnectionLost("connection closed by peer");
+    }
     const bool replacing = socket_.is_open();
     if (replacing && clientActive()) {
       refuse(std::move(socket));
@@ -303,6 +311,14 @@ class TcpServerCore final : public TcpStreamCore {
       startRead(gen);
     if (session == accept_session_)
       startAccept(session);
+  }
+
+  // True when the connected client has closed its side and nothing it sent is left unread (a
+  // peek at the socket, which never blocks).
+  bool peerHasClosed() {
+    std::uint8_t byte = 0;
+    const ssize_t n = ::recv(socket_.native_handle(), &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
   }
 
   bool clientActive() const { return !options_.peers.peer_active || options_.peers.peer_active(); }

@@ -4,11 +4,17 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <future>
+#include <utility>
+
+#include <boost/asio/post.hpp>
 
 namespace irgs::comms {
 namespace {
@@ -172,6 +178,56 @@ TEST(TcpTransport, ServerTakesANewClientWhenTheConnectedOneHasGoneSilent) {
   EXPECT_EQ(asText(second.rec.bytes()), "to second");
   EXPECT_TRUE(first.rec.bytes().empty());
   EXPECT_EQ(server.transport->stats().refused_peers, 1u);
+}
+
+// A raw loopback connection (no transport, so the test controls exactly when it closes).
+int connectRaw(std::uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(port);
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
+    return -1;
+  return fd;
+}
+
+// A client that reconnects at once: its new connection and the end of its old one reach the
+// server in the same instant (here: while the io thread is held), and the server must not refuse
+// the client's return because of its own old connection.
+TEST(TcpTransport, AClientReconnectingAtOnceIsNotRefusedForItsOldConnection) {
+  IoThread io;
+  PeerPolicy peers;
+  peers.peer_active = [] { return true; };  // e.g. its heartbeats are recent
+  Server server(io, 0, peers);
+  const auto port = server.port();
+  const int old_fd = connectRaw(port);
+  ASSERT_GE(old_fd, 0);
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+
+  std::promise<void> release;
+  std::promise<void> held;
+  boost::asio::post(io.context(), [&] {
+    held.set_value();
+    release.get_future().wait();
+  });
+  held.get_future().wait();
+  // New connection first (the kernel completes the handshake meanwhile), then the old one
+  // closes: the accept is then ready before the old socket's end of stream.
+  const int new_fd = connectRaw(port);
+  ::close(old_fd);
+  release.set_value();
+  ASSERT_GE(new_fd, 0);
+
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen, 2)) << server.rec.allMessages();
+  EXPECT_TRUE(server.rec.refused().empty()) << server.rec.allMessages();
+  ASSERT_TRUE(server.transport->send(asBytes("back")));
+  char buf[4] = {};
+  pollfd p{new_fd, POLLIN, 0};
+  ASSERT_EQ(::poll(&p, 1, 10000), 1);
+  EXPECT_EQ(::recv(new_fd, buf, sizeof buf, MSG_WAITALL), 4);
+  EXPECT_EQ(std::string(buf, 4), "back");
+  ::close(new_fd);
 }
 
 TEST(TcpTransport, ServerListensOnLoopbackUnlessGivenAnAddress) {
