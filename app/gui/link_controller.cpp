@@ -60,11 +60,14 @@ QString LinkController::connectTo(const QString& url) {
   if (!linked())
     simulator_factory_ = session_.robotFactory();
   const std::string text = parsed.url->toString();
-  RobotFactory factory = [io = io_, link_url = *parsed.url, tap = frame_tap_](
+  RobotFactory factory = [io = io_, link_url = *parsed.url, tap = frame_tap_,
+                          signing = signing_key_](
                              const WorldMap& world,
                              const RobotProfile& profile) -> std::unique_ptr<Robot> {
     comms::RemoteRobotConfig config;
     config.mavlink.link.tap = tap;
+    config.mavlink.link.signing_key = signing;
+    config.mavlink.link.require_signed = signing.has_value();
     config.mavlink.messages = guiMessageSampling();
     // An ARCOS robot (docs/pioneer.md) counts from (0, 0, 0) at OPEN: it is taken to stand at
     // the map's start pose, so its sonar map lands on the map being shown.

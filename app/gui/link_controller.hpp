@@ -10,11 +10,13 @@
 #include <QString>
 #include <QTimer>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "app/gui/session_controller.hpp"
 #include "comms/link/frame_tap.hpp"
 #include "comms/robot/remote_robot.hpp"
+#include "comms/mavlink/signing.hpp"
 #include "widgets/link/connection_dialog.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
@@ -43,6 +45,9 @@ class LinkController : public QObject {
   // Links opened by later connectTo() calls report their bytes to `tap` (session recording);
   // an empty function: none.
   void setFrameTap(comms::FrameTap tap) { frame_tap_ = std::move(tap); }
+  // MAVLink links opened by later connectTo() calls sign with `key` and accept only frames
+  // signed with it; nothing: unsigned. ARCOS links are never signed.
+  void setSigningKey(std::optional<comms::mavlink::SigningKey> key) { signing_key_ = key; }
 
   // The session's robot when it is behind a link (a live link or a replay), else null.
   comms::RemoteRobot* remote() const;
@@ -77,6 +82,7 @@ class LinkController : public QObject {
   std::shared_ptr<comms::IoThread> io_;  // created on the first connection
   RobotFactory simulator_factory_;
   comms::FrameTap frame_tap_;
+  std::optional<comms::mavlink::SigningKey> signing_key_;
   QTimer poll_timer_;
   bool was_linked_ = false;
 };

@@ -4,9 +4,13 @@
 #include <QSettings>
 #include <QStatusBar>
 
+#include "app/gui/app_settings.hpp"
 #include "app/gui/link_controller.hpp"
 #include "app/gui/link_format.hpp"
 #include "app/gui/session_controller.hpp"
+#include "comms/link/link_url.hpp"
+#include "comms/mavlink/signing_key.hpp"
+#include "comms/robot/arcos_robot.hpp"
 #include "widgets/command/command_panel.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
@@ -64,12 +68,88 @@ void LinkUi::setDialogRunner(DialogRunner runner) {
     dialog_runner_ = std::move(runner);
 }
 
+widgets::SigningKeyTools LinkUi::signingKeyTools() {
+  namespace mav = comms::mavlink;
+  widgets::SigningKeyTools tools;
+  tools.generate = [] {
+    return QString::fromStdString(mav::signingKeyText(mav::randomSigningKey()));
+  };
+  tools.parse = [](const QString& text, QString* error) {
+    const mav::SigningKeyResult key = mav::parseSigningKeyText(text.toStdString());
+    if (!key.key) {
+      if (error != nullptr)
+        *error = QString::fromStdString(key.error);
+      return QString();
+    }
+    return QString::fromStdString(mav::signingKeyText(*key.key));
+  };
+  tools.fingerprint = [](const QString& text) {
+    const mav::SigningKeyResult key = mav::parseSigningKeyText(text.toStdString());
+    return key.key ? QString::fromStdString(mav::signingKeyFingerprint(*key.key)) : QString();
+  };
+  return tools;
+}
+
+widgets::SigningChoice LinkUi::signingChoice() const {
+  widgets::SigningChoice choice;
+  choice.enabled = settings_.value(QString::fromLatin1(settings_key::kLinkSigning)).toBool();
+  choice.key = settings_.value(QString::fromLatin1(settings_key::kLinkSigningKey)).toString();
+  return choice;
+}
+
+void LinkUi::saveSigningChoice(const widgets::SigningChoice& choice) {
+  settings_.setValue(QString::fromLatin1(settings_key::kLinkSigning), choice.enabled);
+  if (choice.key.isEmpty()) {
+    settings_.remove(QString::fromLatin1(settings_key::kLinkSigningKey));
+    return;
+  }
+  settings_.setValue(QString::fromLatin1(settings_key::kLinkSigningKey), choice.key);
+  if (!restrictSettingsToOwner(settings_))
+    session_.report(EventLevel::kWarning,
+                    tr("The settings file %1 holds the signing key but could not be made "
+                       "readable by you only")
+                        .arg(settings_.fileName()));
+}
+
+void LinkUi::applySigning() {
+  const widgets::SigningChoice choice = signingChoice();
+  std::optional<comms::mavlink::SigningKey> key;
+  if (choice.enabled) {
+    const auto parsed = comms::mavlink::parseSigningKeyText(choice.key.toStdString());
+    if (!parsed.key)
+      session_.report(EventLevel::kError,
+                      tr("MAVLink signing is on but the saved key is unusable (%1): connecting "
+                         "unsigned")
+                          .arg(QString::fromStdString(parsed.error)));
+    key = parsed.key;
+  }
+  controller_->setSigningKey(key);
+}
+
+void LinkUi::reportSigning(const QString& url) {
+  const widgets::SigningChoice choice = signingChoice();
+  if (!choice.enabled)
+    return;
+  const comms::LinkUrlResult parsed = comms::parseLinkUrl(url.trimmed().toStdString());
+  if (parsed.url && comms::isArcosUrl(*parsed.url)) {
+    session_.report(EventLevel::kWarning, tr("MAVLink signing does not apply to ARCOS: this "
+                                             "link is not signed"));
+    return;
+  }
+  session_.report(EventLevel::kInfo,
+                  tr("MAVLink signing on, key %1: the robot needs the same key (irgs-robot "
+                     "--signing-key)")
+                      .arg(signingKeyTools().fingerprint(choice.key)));
+}
+
 QString LinkUi::connectTo(const QString& url) {
+  applySigning();
   const QString problem = controller_->connectTo(url);
   if (!problem.isEmpty()) {
     session_.report(EventLevel::kError, tr("Cannot connect to %1: %2").arg(url, problem));
   } else {
     settings_.setValue(QString::fromLatin1(kLastLinkUrlKey), url.trimmed());
+    reportSigning(url);
   }
   onLinkedChanged(controller_->linked());
   return problem;
@@ -83,6 +163,11 @@ bool LinkUi::chooseAndConnect() {
                             ? controller_->url()
                             : settings_.value(QString::fromLatin1(kLastLinkUrlKey)).toString();
   options.validate = &validateLinkUrl;
+  options.signing_tools = signingKeyTools();
+  options.signing = signingChoice();
+  options.save_signing = [this](const widgets::SigningChoice& choice) {
+    saveSigningChoice(choice);
+  };
   const std::optional<QString> url = dialog_runner_(std::move(options));
   if (!url) {
     onLinkedChanged(controller_->linked());  // the mode switch shows what is really in use

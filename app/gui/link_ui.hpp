@@ -1,8 +1,9 @@
 #pragma once
 // The robot-link part of the main window: the command panel's Simulator / Robot link switch
 // (choosing the link opens the connection dialog), the link-health panel, the link state in the
-// status bar, the behaviour buttons and the last URL in the settings. MainWindow lays the
-// health panel out; everything else about the link is wired here.
+// status bar, the behaviour buttons, and in the settings the last URL and the MAVLink signing
+// choice and key (applied to every connection). MainWindow lays the health panel out;
+// everything else about the link is wired here.
 
 #include <QObject>
 #include <QString>
@@ -53,10 +54,18 @@ class LinkUi : public QObject {
   bool chooseAndConnect();
   void backToSimulator();
 
+  // The signing choice kept in the settings (what the dialog's Connect saves), and saving one.
+  widgets::SigningChoice signingChoice() const;
+  void saveSigningChoice(const widgets::SigningChoice& choice);
+  // The key tools the connection dialog gets (comms' key format, fingerprint, random keys).
+  static widgets::SigningKeyTools signingKeyTools();
+
  private:
   void onModeRequested(int mode);
   void onLinkedChanged(bool linked);
   void onHealthChanged(const widgets::LinkHealth& health);
+  void applySigning();                     // the saved choice, to the links connectTo() opens
+  void reportSigning(const QString& url);  // says in the console whether the link is signed
 
   SessionController& session_;
   QSettings& settings_;

@@ -139,13 +139,45 @@ FirmwareCore::FirmwareCore(Simulator simulator, FirmwareConfig config)
     params_.setInitial(ParamId::kHbTimeout, config_.gcs_timeout_s);
   }
   syncRateParams();
+  if (config_.signing_key) {
+    decoder_.setSigningKey(config_.signing_key, /*require_signed=*/true);
+    encoder_.enableSigning(*config_.signing_key, /*link_id=*/0);
+  }
 }
 
 template <class M>
 void FirmwareCore::send(const M& message) {
-  const mav::EncodedFrame frame = encoder_.encode(message);
+  const mav::EncodedFrame frame = encoder_.encode(message, signingTime(sim_.time_s()));
   const auto bytes = frame.view();
   output_.insert(output_.end(), bytes.begin(), bytes.end());
+}
+
+std::uint64_t FirmwareCore::signingTime(double t_s) const {
+  return config_.signing_time_at_boot +
+         static_cast<std::uint64_t>(std::max(t_s, 0.0) *
+                                    static_cast<double>(mav::kSigningTicksPerSecond));
+}
+
+std::uint64_t FirmwareCore::refusedFrames() const {
+  const mav::DecodeCounters& rx = decoder_.totals();
+  return rx.unsigned_rejected + rx.bad_signature + rx.replay_rejected;
+}
+
+void FirmwareCore::warnGroundStation(const std::string& text) {
+  sendStatus(kSeverityWarning, text);
+}
+
+// Refused frames reach whoever holds the link: an unsigned ground station learns why nothing
+// moves, a signed one that something else is talking.
+void FirmwareCore::reportRefusedFrames(double now_s) {
+  const std::uint64_t refused = refusedFrames();
+  if (refused == refused_reported_ || now_s < next_refusal_report_s_)
+    return;
+  sendStatus(kSeverityWarning,
+             "unsigned/bad signature: " + std::to_string(refused - refused_reported_) +
+                 " refused (" + std::to_string(refused) + " total)");
+  refused_reported_ = refused;
+  next_refusal_report_s_ = now_s + config_.refusal_report_period_s;
 }
 
 void FirmwareCore::sendStatus(std::uint8_t severity, const std::string& text) {
@@ -164,9 +196,13 @@ std::vector<std::uint8_t> FirmwareCore::takeOutput() {
 
 void FirmwareCore::receiveBytes(std::span<const std::uint8_t> bytes, double now_s) {
   frames_.clear();
+  if (config_.signing_key)
+    decoder_.setSigningClock(signingTime(now_s));
   decoder_.feed(bytes, frames_);
   for (const auto& frame : frames_)
     receive(frame, now_s);
+  if (config_.signing_key)
+    reportRefusedFrames(now_s);
 }
 
 void FirmwareCore::receive(const mav::Frame& frame, double now_s) {

@@ -82,6 +82,15 @@ struct FirmwareConfig {
   double battery_idle_a = 0.25;
   double battery_a_per_mps = 2.0;
   double battery_a_per_radps = 0.4;
+  // MAVLink signing (docs/protocol.md, "Who may drive"). With a key every frame sent is signed
+  // and receiveBytes() acts only on frames signed with it: unsigned, wrongly signed and replayed
+  // frames are dropped at intake, counted (refusedFrames(), SYS_STATUS errors_comm) and reported
+  // by a STATUSTEXT warning at most every refusal_report_period_s.
+  std::optional<comms::mavlink::SigningKey> signing_key;
+  // The signing time (signingTimestampAt: 10 us units since 2015) at firmware time 0, i.e. the
+  // owner's wall clock at boot; the firmware's signing clock is this plus its own time.
+  std::uint64_t signing_time_at_boot = 0;
+  double refusal_report_period_s = 5.0;
 };
 
 // The compact profile for slow links (9600 baud HC-05 modules, docs/protocol.md sections 4-5):
@@ -106,7 +115,8 @@ class FirmwareCore {
   // Throws std::invalid_argument for non-positive timeouts or negative periods.
   FirmwareCore(Simulator simulator, FirmwareConfig config = {});
 
-  // Decodes bytes from the ground station and acts on the messages they carry.
+  // Decodes bytes from the ground station and acts on the messages they carry (with a signing
+  // key: only on frames signed with it).
   void receiveBytes(std::span<const std::uint8_t> bytes, double now_s);
   // Acts on one decoded message (frames from our own system id are ignored: echo protection).
   void receive(const comms::mavlink::Frame& frame, double now_s);
@@ -122,6 +132,10 @@ class FirmwareCore {
   const Simulator& simulator() const { return sim_; }
   const FirmwareConfig& config() const { return config_; }
   const comms::mavlink::DecodeCounters& decodeTotals() const { return decoder_.totals(); }
+  // Frames refused by the signature check (unsigned, wrong key, replayed) since boot.
+  std::uint64_t refusedFrames() const;
+  // Queues a STATUSTEXT warning for the ground station (irgs-robot: a second client refused).
+  void warnGroundStation(const std::string& text);
   const ParamTable& params() const { return params_; }
   const MissionStore& mission() const { return mission_store_; }
   // The period of a streamed message [s] (0 = off), nullopt for messages that are not streams.
@@ -143,6 +157,8 @@ class FirmwareCore {
 
   template <class M>
   void send(const M& message);
+  std::uint64_t signingTime(double t_s) const;
+  void reportRefusedFrames(double now_s);
   void sendStatus(std::uint8_t severity, const std::string& text);
   void handleCommand(const comms::mavlink::CommandLong& command);
   void handleParam(const comms::mavlink::Frame& frame);
@@ -212,6 +228,8 @@ class FirmwareCore {
   bool teleop_was_active_ = false;
   bool warned_no_gcs_ = false;
   std::uint32_t bumpers_ = 0;
+  std::uint64_t refused_reported_ = 0;  // refusedFrames() at the last STATUSTEXT about them
+  double next_refusal_report_s_ = 0.0;
 
   // The running (or last) behaviour.
   struct ActiveBehaviour {

@@ -28,9 +28,12 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "app/robot/arcos_firmware.hpp"
+#include "app/robot/drive_guard.hpp"
 #include "app/robot/firmware_core.hpp"
+#include "comms/mavlink/signing_key.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "comms/transport/tcp_transport.hpp"
+#include "comms/transport/udp_transport.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/sim/sim_presets.hpp"
 #include "core/world/map_file.hpp"
@@ -46,12 +49,23 @@ constexpr int kExitIo = 3;
 
 const char* const kUsage =
     "usage: irgs-robot [--map FILE] [--robot FILE] [--seed N] [--pty [--link PATH]]\n"
-    "                  [--tcp PORT] [--baud N] [--rate HZ] [--gcs-timeout S] [--ideal]\n"
+    "                  [--tcp [ADDR:]PORT | --udp [ADDR:]PORT] [--signing-key FILE]\n"
+    "                  [--baud N] [--rate HZ] [--gcs-timeout S] [--ideal]\n"
     "                  [--log-motion] [--protocol mavlink|arcos] [--watchdog S]\n"
-    "  Serves the simulated robot over MAVLink 2. Without --tcp it opens a pseudo-terminal,\n"
-    "  prints its path (/dev/pts/N) on stdout and serves on it; --link PATH also creates a\n"
-    "  symlink PATH to it. --tcp PORT serves as a TCP server (0 = any free port; the port is\n"
-    "  printed as 'tcp PORT'). --baud N limits the pty output to N/10 bytes/s like a UART\n"
+    "  Serves the simulated robot over MAVLink 2. Without --tcp or --udp it opens a\n"
+    "  pseudo-terminal, prints its path (/dev/pts/N) on stdout and serves on it; --link PATH\n"
+    "  also creates a symlink PATH to it. --tcp [ADDR:]PORT serves as a TCP server (0 = any\n"
+    "  free port; the port is printed as 'tcp PORT'), --udp [ADDR:]PORT as a UDP listener that\n"
+    "  answers the ground station that sent first (printed as 'udp PORT'). Both bind ADDR,\n"
+    "  by default 127.0.0.1 (this computer only); 0.0.0.0 serves every interface.\n"
+    "  One ground station drives: while it is active (heartbeats within --gcs-timeout) a second\n"
+    "  one is refused (TCP: its connection closed; UDP: its datagrams dropped), counted, named\n"
+    "  to the first in a STATUSTEXT warning and on stderr (ARCOS: stderr only).\n"
+    "  --signing-key FILE: MAVLink 2 signing with the key in FILE (64 hex digits; the GUI's\n"
+    "  connection dialog exports one). Everything sent is signed; unsigned, wrongly signed and\n"
+    "  replayed frames are refused, counted (SYS_STATUS errors_comm) and reported (STATUSTEXT\n"
+    "  and stderr, at most every 5 s). The key's fingerprint is printed on stderr.\n"
+    "  --baud N limits the pty output to N/10 bytes/s like a UART\n"
     "  (default 115200); below 38400 the compact profile is sent (IRGS_POSE_2D 10 Hz,\n"
     "  IRGS_SONAR_SCAN 5 Hz). --rate HZ: odometry and sonar telemetry rate (default 20).\n"
     "  --gcs-timeout S: stop when ground-station heartbeats are missing S seconds (1.5).\n"
@@ -62,11 +76,19 @@ const char* const kUsage =
     "  Pioneer profile (--robot resources/robots/pioneer_p3dx.json) and --tcp 8101 like\n"
     "  MobileSim. --watchdog S: ARCOS PULSE watchdog (default: the profile's, 2 s).\n";
 
+// A listening endpoint from --tcp / --udp: "PORT" or "ADDR:PORT".
+struct ListenSpec {
+  bool udp = false;
+  std::string host;  // empty: loopback
+  std::uint16_t port = 0;
+};
+
 struct Options {
   fs::path map = fs::path(IRGS_RESOURCE_DIR) / "maps/default.json";
   fs::path robot = fs::path(IRGS_RESOURCE_DIR) / "robots/thesis_robot.json";
   std::uint64_t seed = 1;
-  std::optional<std::uint16_t> tcp_port;
+  std::optional<ListenSpec> listen;  // --tcp / --udp
+  fs::path signing_key;              // --signing-key
   std::string link;
   std::uint32_t baud = 115200;
   double rate_hz = 20.0;
@@ -85,6 +107,24 @@ bool parseNumber(const std::string& text, double& out) {
   } catch (const std::exception&) {
     return false;
   }
+}
+
+// "PORT" or "ADDR:PORT" (ADDR an IPv4 address: checked when the transport binds it).
+std::optional<ListenSpec> parseListen(const std::string& text, bool udp) {
+  ListenSpec spec;
+  spec.udp = udp;
+  std::string port = text;
+  if (const auto colon = text.rfind(':'); colon != std::string::npos) {
+    spec.host = text.substr(0, colon);
+    port = text.substr(colon + 1);
+    if (spec.host.empty())
+      return std::nullopt;
+  }
+  double number = 0.0;
+  if (!parseNumber(port, number) || number < 0 || number > 65535 || number != std::floor(number))
+    return std::nullopt;
+  spec.port = static_cast<std::uint16_t>(number);
+  return spec;
 }
 
 // Returns an error message, empty on success; sets help when --help was given.
@@ -109,24 +149,29 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
       o.ideal = true;
     } else if (arg == "--log-motion") {
       o.log_motion = true;
-    } else if (arg == "--map" || arg == "--robot" || arg == "--link") {
+    } else if (arg == "--map" || arg == "--robot" || arg == "--link" || arg == "--signing-key") {
       if (!value(v) || v.empty())
         return arg + " needs a path";
       if (arg == "--map")
         o.map = v;
       else if (arg == "--robot")
         o.robot = v;
+      else if (arg == "--signing-key")
+        o.signing_key = v;
       else
         o.link = v;
-    } else if (arg == "--seed" || arg == "--tcp" || arg == "--baud") {
+    } else if (arg == "--tcp" || arg == "--udp") {
+      if (o.listen)
+        return "give one of --tcp and --udp, once";
+      if (value(v))
+        o.listen = parseListen(v, arg == "--udp");
+      if (!o.listen)
+        return arg + " needs PORT or ADDR:PORT (port 0-65535), e.g. 5760 or 0.0.0.0:5760";
+    } else if (arg == "--seed" || arg == "--baud") {
       if (!value(v) || !parseNumber(v, number) || number < 0 || number != std::floor(number))
         return arg + " needs a non-negative integer";
       if (arg == "--seed") {
         o.seed = static_cast<std::uint64_t>(number);
-      } else if (arg == "--tcp") {
-        if (number > 65535)
-          return "--tcp: port must be 0-65535";
-        o.tcp_port = static_cast<std::uint16_t>(number);
       } else {
         if (number < 300 || number > 4000000)
           return "--baud: must be 300-4000000";
@@ -148,10 +193,12 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
       return "unknown option " + arg;
     }
   }
-  if (pty && o.tcp_port)
-    return "--pty and --tcp exclude each other";
-  if (!o.link.empty() && o.tcp_port)
+  if (pty && o.listen)
+    return "--pty excludes --tcp and --udp";
+  if (!o.link.empty() && o.listen)
     return "--link needs the pty transport";
+  if (!o.signing_key.empty() && o.arcos)
+    return "--signing-key is MAVLink's: ARCOS has no signing";
   return {};
 }
 
@@ -252,6 +299,100 @@ class PtyLink {
   std::vector<std::uint8_t> pending_;
 };
 
+// What the --tcp / --udp transport needs from the served protocol; called on the io thread.
+struct ListenerHooks {
+  std::function<double()> now_s;
+  std::function<void(std::span<const std::uint8_t> bytes, double now_s)> receive;
+  std::function<bool(double now_s)> peer_alive;         // the attached peer, by the protocol
+  std::function<void(const std::string& text)> report;  // a refusal report
+  std::function<std::vector<std::uint8_t>(const std::string& peer)> refusal_bytes;  // optional
+};
+
+// The --tcp / --udp transport (closed) with its "who may drive" policy: comms::PeerPolicy asks
+// the guard, which keeps the attached ground station while it is alive. Prints "tcp PORT" or
+// "udp PORT" once bound; a failure is printed and sets `fatal`.
+std::unique_ptr<irgs::comms::Transport> makeListener(irgs::comms::IoThread& io,
+                                                     const ListenSpec& spec,
+                                                     irgs::app::DriveGuard& guard,
+                                                     ListenerHooks hooks_value,
+                                                     std::atomic<bool>& fatal) {
+  namespace comms = irgs::comms;
+  const auto hooks = std::make_shared<const ListenerHooks>(std::move(hooks_value));
+  comms::PeerPolicy peers;
+  peers.peer_active = [hooks, &guard] {
+    const double now_s = hooks->now_s();
+    return guard.peerActive(now_s, hooks->peer_alive(now_s));
+  };
+  peers.refusal_bytes = hooks->refusal_bytes;
+  // Set once the transport exists (its callbacks run only after open()).
+  const auto transport = std::make_shared<comms::Transport*>(nullptr);
+  comms::TransportCallbacks callbacks;
+  callbacks.on_bytes = [hooks, &guard](std::span<const std::uint8_t> bytes) {
+    const double now_s = hooks->now_s();
+    guard.peerBytes(now_s);  // UDP: the first datagram of a new peer attaches it
+    hooks->receive(bytes, now_s);
+  };
+  callbacks.on_refused = [hooks, &guard](const std::string& peer) {
+    if (auto report = guard.refused(peer, hooks->now_s()))
+      hooks->report(*report);
+  };
+  const std::string kind = spec.udp ? "udp" : "tcp";
+  callbacks.on_state = [hooks, &guard, &fatal, transport, kind, announced = false](
+                           comms::TransportState state, const std::string& message) mutable {
+    if (state == comms::TransportState::kFailed) {
+      std::fprintf(stderr, "irgs-robot: %s: %s\n", kind.c_str(), message.c_str());
+      fatal = true;
+      return;
+    }
+    if (state == comms::TransportState::kOpen && kind == "tcp")
+      guard.peerAttached(hooks->now_s());  // a client connected
+    // Announce the port once it is bound ("listening on ..." / "bound udp ...").
+    if (!announced && *transport && (*transport)->localPort() != 0) {
+      std::printf("%s %u\n", kind.c_str(), static_cast<unsigned>((*transport)->localPort()));
+      std::fflush(stdout);
+      announced = true;
+    }
+  };
+  std::unique_ptr<comms::Transport> made;
+  if (spec.udp) {
+    comms::UdpOptions o;
+    o.listen = true;
+    o.host = spec.host;
+    o.port = spec.port;
+    o.peers = std::move(peers);
+    made = comms::makeUdpTransport(io, std::move(o), std::move(callbacks));
+  } else {
+    comms::TcpServerOptions o;
+    o.host = spec.host;
+    o.port = spec.port;
+    o.peers = std::move(peers);
+    made = comms::makeTcpServerTransport(io, std::move(o), std::move(callbacks));
+  }
+  *transport = made.get();
+  return made;
+}
+
+// What a refused MAVLink ground station reads before its connection closes: a STATUSTEXT from
+// the robot's ids (signed with the key, on a link id of its own, so a signing ground station
+// shows it too).
+std::function<std::vector<std::uint8_t>(const std::string&)> mavlinkRefusal(
+    const irgs::app::FirmwareConfig& config) {
+  namespace mav = irgs::comms::mavlink;
+  auto encoder = std::make_shared<mav::FrameEncoder>(config.system_id, config.component_id);
+  if (config.signing_key)
+    encoder->enableSigning(*config.signing_key, /*link_id=*/1);
+  return [encoder](const std::string&) {
+    mav::Statustext m;
+    m.severity = static_cast<std::uint8_t>(mav::MavSeverity::kWarning);
+    const std::string text = "busy: another ground station is driving";
+    std::copy(text.begin(), text.end(), m.text.begin());
+    const mav::EncodedFrame frame =
+        encoder->encode(m, mav::signingTimestampAt(std::chrono::system_clock::now()));
+    const auto bytes = frame.view();
+    return std::vector<std::uint8_t>(bytes.begin(), bytes.end());
+  };
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -292,13 +433,28 @@ int main(int argc, char** argv) {
     sim_config.gyro = irgs::autogyroErrorModel();
   // Below 38400 baud the full telemetry does not fit: use the compact dialect profile.
   irgs::app::FirmwareConfig fw_config;
-  if (options.baud < 38400 && !options.tcp_port) {
+  if (options.baud < 38400 && !options.listen) {
     fw_config = irgs::app::slowLinkFirmwareConfig();
   } else {
     fw_config.odometry_period_s = 1.0 / options.rate_hz;
     fw_config.sonar_period_s = 1.0 / options.rate_hz;
   }
   fw_config.gcs_timeout_s = options.gcs_timeout_s;
+  if (!options.signing_key.empty()) {
+    const irgs::comms::mavlink::SigningKeyResult key =
+        irgs::comms::mavlink::loadSigningKeyFile(options.signing_key);
+    if (!key.key) {
+      std::fprintf(stderr, "irgs-robot: %s\n", key.error.c_str());
+      return kExitFiles;
+    }
+    fw_config.signing_key = key.key;
+    fw_config.signing_time_at_boot =
+        irgs::comms::mavlink::signingTimestampAt(std::chrono::system_clock::now());
+    std::fprintf(stderr,
+                 "irgs-robot: MAVLink signing on, key fingerprint %s: unsigned commands are "
+                 "refused\n",
+                 irgs::comms::mavlink::signingKeyFingerprint(*key.key).c_str());
+  }
   std::unique_ptr<irgs::app::FirmwareCore> core;
   std::unique_ptr<irgs::app::ArcosFirmware> arcos;  // --protocol arcos
   try {
@@ -337,7 +493,7 @@ int main(int argc, char** argv) {
   ::signal(SIGPIPE, SIG_IGN);
 
   std::unique_ptr<PtyLink> pty;
-  if (!options.tcp_port) {
+  if (!options.listen) {
     pty = std::make_unique<PtyLink>(options.baud);
     const std::string pty_error = pty->open(options.baud);
     if (!pty_error.empty()) {
@@ -364,41 +520,49 @@ int main(int argc, char** argv) {
     // Explicit lifetimes: the io thread is joined (io.reset()) before the state its handlers
     // use goes away, and the timer and transport are destroyed on the io thread before that.
     auto io = std::make_unique<irgs::comms::IoThread>();
-    std::unique_ptr<irgs::comms::Transport> tcp;
+    std::unique_ptr<irgs::comms::Transport> listener;  // --tcp / --udp
+    double last_rx_s = -1e9;                           // newest bytes from the listener's peer
     auto timer = std::make_unique<boost::asio::steady_timer>(io->context());
     const Clock::time_point start = Clock::now();
     auto seconds = [start](Clock::time_point t) {
       return std::chrono::duration<double>(t - start).count();
     };
 
-    if (options.tcp_port) {
-      irgs::comms::TcpServerOptions tcp_options;
-      tcp_options.port = *options.tcp_port;
-      irgs::comms::TransportCallbacks callbacks;
-      callbacks.on_bytes = [&receive, &seconds](std::span<const std::uint8_t> bytes) {
-        receive(bytes, seconds(Clock::now()));
+    // Who may drive (--tcp / --udp): refusals are reported on stderr and, over MAVLink, to the
+    // ground station that drives (STATUSTEXT). Everything here runs on the io thread.
+    irgs::app::DriveGuard guard(options.arcos ? options.watchdog_s.value_or(2.0)
+                                              : options.gcs_timeout_s);
+    const auto reportRefusals = [&core](const std::string& text) {
+      std::fprintf(stderr, "irgs-robot: %s\n", text.c_str());
+      if (core)
+        core->warnGroundStation(text);
+    };
+    if (options.listen) {
+      ListenerHooks hooks;
+      hooks.now_s = [&seconds] { return seconds(Clock::now()); };
+      hooks.receive = [&receive, &last_rx_s](std::span<const std::uint8_t> bytes, double now_s) {
+        last_rx_s = now_s;
+        receive(bytes, now_s);
       };
-      // Announce the port once it is bound (the second `opening` report: "listening on ...").
-      callbacks.on_state = [&fatal, &tcp, announced = false](irgs::comms::TransportState state,
-                                                             const std::string& message) mutable {
-        if (state == irgs::comms::TransportState::kFailed) {
-          std::fprintf(stderr, "irgs-robot: tcp: %s\n", message.c_str());
-          fatal = true;
-        } else if (!announced && tcp && tcp->localPort() != 0) {
-          std::printf("tcp %u\n", static_cast<unsigned>(tcp->localPort()));
-          std::fflush(stdout);
-          announced = true;
-        }
+      hooks.peer_alive = [&core, &last_rx_s, &options](double now_s) {
+        if (core)
+          return core->safety().gcs_alive;  // a heartbeat (signed, with a key) within timeout
+        return now_s - last_rx_s < options.watchdog_s.value_or(2.0);  // ARCOS: any packet
       };
-      tcp = irgs::comms::makeTcpServerTransport(*io, tcp_options, callbacks);
-      boost::asio::post(io->context(), [&tcp] { tcp->open(); });
+      hooks.report = reportRefusals;
+      if (core)
+        hooks.refusal_bytes = mavlinkRefusal(fw_config);
+      listener = makeListener(*io, *options.listen, guard, std::move(hooks), fatal);
+      boost::asio::post(io->context(), [&listener] { listener->open(); });
     }
 
     // The stepping loop: every dt of wall time, read, advance the simulator to now, write.
     std::vector<std::uint8_t> rx;
     Clock::time_point next = start;
     Clock::time_point last_write = start;
-    bool was_moving = false;  // --log-motion
+    bool was_moving = false;                   // --log-motion
+    std::uint64_t refused_frames_printed = 0;  // --signing-key: refusals on stderr, every 5 s
+    double next_refused_print_s = 0.0;
     // Set on the io thread at shutdown: a timer completion already queued when the timer is
     // destroyed still runs (with success), and must not touch the destroyed timer.
     bool stopping = false;
@@ -427,8 +591,24 @@ int main(int argc, char** argv) {
       const std::vector<std::uint8_t> out = takeOutput();
       if (pty) {
         pty->write(out, std::chrono::duration<double>(now - last_write).count());
-      } else if (tcp && !out.empty()) {
-        tcp->send(out);  // refused (and counted) while no client is connected
+      } else if (listener && !out.empty()) {
+        listener->send(out);  // refused (and counted) while no ground station is attached
+      }
+      if (auto report = guard.dueReport(now_s))
+        reportRefusals(*report);
+      if (core && core->refusedFrames() != refused_frames_printed &&
+          now_s >= next_refused_print_s) {
+        // The firmware tells the ground station (STATUSTEXT); this is the robot's own log.
+        refused_frames_printed = core->refusedFrames();
+        next_refused_print_s = now_s + irgs::app::DriveGuard::kDefaultReportPeriod_s;
+        const irgs::comms::mavlink::DecodeCounters& totals = core->decodeTotals();
+        std::fprintf(stderr,
+                     "irgs-robot: signing: %llu frames refused (unsigned %llu, bad signature "
+                     "%llu, replayed %llu)\n",
+                     static_cast<unsigned long long>(refused_frames_printed),
+                     static_cast<unsigned long long>(totals.unsigned_rejected),
+                     static_cast<unsigned long long>(totals.bad_signature),
+                     static_cast<unsigned long long>(totals.replay_rejected));
       }
       last_write = now;
       next += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
@@ -452,7 +632,7 @@ int main(int argc, char** argv) {
     boost::asio::post(io->context(), [&] {
       stopping = true;
       timer.reset();
-      tcp.reset();
+      listener.reset();
       stopped.set_value();
     });
     stopped.get_future().wait();

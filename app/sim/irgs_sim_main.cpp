@@ -14,6 +14,7 @@
 #include "app/sim/linked_run.hpp"
 #include "app/sim/localization_run.hpp"
 #include "app/sim/sim_options.hpp"
+#include "comms/mavlink/signing_key.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/robot/robot_profile_file.hpp"
 #include "core/scenario/scenario_outputs.hpp"
@@ -138,6 +139,14 @@ int runConnected(const irgs::app::SimOptions& options, const char* argv0) {
         spec.script.empty() ? 60.0 : std::max(spec.script.lastTime_s(), 0.1));
   }
   spec.connect_timeout_s = options.connect_timeout_s;
+  if (!options.signing_key.empty()) {
+    const auto key = irgs::comms::mavlink::loadSigningKeyFile(options.signing_key);
+    if (!key.key) {
+      std::fprintf(stderr, "irgs-sim: %s\n", key.error.c_str());
+      return kExitFiles;
+    }
+    spec.signing_key = key.key;
+  }
   spec.grid_resolution_m = options.grid_resolution_m;
   spec.cancel = &g_interrupted;
   spec.wall_clock = wallSeconds;

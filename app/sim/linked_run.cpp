@@ -69,7 +69,10 @@ LinkedRunResult runLinkedScenario(const LinkedRunSpec& spec) {
     return out;
   }
   comms::IoThread io;
-  auto opened = comms::openRemoteRobot(io, *url.url, spec.profile);
+  comms::RemoteRobotConfig config;
+  config.mavlink.link.signing_key = spec.signing_key;
+  config.mavlink.link.require_signed = spec.signing_key.has_value();
+  auto opened = comms::openRemoteRobot(io, *url.url, spec.profile, std::move(config));
   if (!opened.robot) {
     out.error = "cannot open " + spec.url + ": " + opened.error;
     return out;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "comms/link/link_types.hpp"
+#include "comms/mavlink/signing.hpp"
 #include "core/mapping/occupancy_grid.hpp"
 #include "core/mission/mission.hpp"
 #include "core/robot/robot_profile.hpp"
@@ -43,6 +44,9 @@ struct LinkedRunSpec {
   std::optional<Pose2> anchor;      // map-frame pose of the first sample (see the file comment)
   double duration_s = 60.0;         // wall seconds of driving after the link is up (budget)
   double connect_timeout_s = 10.0;  // link up and first sample, else an error
+  // MAVLink signing (--signing-key): every frame sent is signed, only frames signed with the
+  // key are accepted. ARCOS has no signing: a key is refused there.
+  std::optional<comms::mavlink::SigningKey> signing_key;
   double grid_resolution_m = 0.01;
   double trajectory_period_s = 0.1;  // one trajectory row per period of robot time
   double stop_timeout_s = 2.0;       // wait for the robot to confirm the final stop

@@ -67,6 +67,9 @@ live sonar grid is built, then writes the results.
                     no ground truth: the true_* columns repeat the odometry, the odometry error
                     is null)
   --connect-timeout S  seconds to wait for the robot's heartbeat and first odometry (10)
+  --signing-key FILE  with a MAVLink --connect: MAVLink 2 signing with the key in FILE (64 hex
+                    digits, as the GUI's connection dialog exports it and irgs-robot
+                    --signing-key reads it); a robot with a key refuses unsigned commands
   --behaviour B     a behaviour drives the robot instead of a script: mapbuild (autonomous
                     sonar map building: wall following, loop closing, interior, obstacles),
                     goal (A* on the map, path amendment, traveling in 15-degree turns; needs
@@ -221,6 +224,10 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
       if (!x || !y)
         return fail("--goal wants X,Y in metres (e.g. 4.5,2.0), got '" + value + "'");
       options.goal = Vec2(*x, *y);
+    } else if (arg == "--signing-key") {
+      if (value.empty())
+        return fail("--signing-key needs a key file (64 hex digits)");
+      options.signing_key = value;
     } else if (arg == "--connect-timeout") {
       const auto t = parseDouble(value);
       if (!t || *t <= 0.0 || *t > 3600.0)
@@ -241,6 +248,8 @@ SimOptionsResult parseSimOptions(const std::vector<std::string>& args) {
       return fail("--ideal has no meaning for a linked robot (--connect)");
   } else if (options.map.empty()) {
     return fail("--map FILE is required (see --help)");
+  } else if (!options.signing_key.empty()) {
+    return fail("--signing-key signs a link: it needs --connect");
   }
   if (!options.behaviour.empty()) {
     if (!options.script.empty())

@@ -28,6 +28,9 @@ struct SimOptions {
   // so that the first sample lies there (app/sim/linked_run.hpp).
   std::string connect;
   double connect_timeout_s = 10.0;  // --connect-timeout: link up and first sample
+  // --signing-key FILE (with a MAVLink --connect): sign what is sent, accept only what is signed
+  // with the key (comms/mavlink/signing_key.hpp has the file format).
+  std::filesystem::path signing_key;
   // --behaviour mapbuild|goal|coverage: a host behaviour drives the simulated robot instead of
   // a script (app/sim/behaviour_run.hpp); --goal X,Y (metres) for "goal".
   std::string behaviour;

@@ -112,6 +112,23 @@ struct Link::Impl : std::enable_shared_from_this<Link::Impl> {
     flush(t);
   }
 
+  // A listening transport turned a second robot away (the first one keeps the link). One
+  // console line per new peer, else at most one per kRefusalReport_s: a UDP sender is refused
+  // datagram by datagram.
+  void onRefused(const std::string& peer) {
+    if (stopped)
+      return;
+    const double t = now();
+    ++refused_total;
+    if (peer == last_refused_peer && t < next_refusal_report_s)
+      return;
+    last_refused_peer = peer;
+    next_refusal_report_s = t + kRefusalReport_s;
+    session.onTransportStatus(t, "refused " + peer + ": another peer has the link (" +
+                                     std::to_string(refused_total) + " refused)");
+    flush(t);
+  }
+
   void onTransportState(TransportState new_state, const std::string& message) {
     if (stopped)
       return;
@@ -218,6 +235,10 @@ struct Link::Impl : std::enable_shared_from_this<Link::Impl> {
   double opened_at_s = 0.0;
   double reopen_at_s = 0.0;
   double backoff_s;
+  static constexpr double kRefusalReport_s = 5.0;
+  std::uint64_t refused_total = 0;
+  std::string last_refused_peer;
+  double next_refusal_report_s = 0.0;
 
   // Any thread.
   std::atomic<LinkState> state{LinkState::kDisconnected};
@@ -255,6 +276,7 @@ LinkResult Link::create(IoThread& io, const LinkUrl& url, LinkConfig config,
   tc.on_state = [raw](TransportState state, const std::string& message) {
     raw->onTransportState(state, message);
   };
+  tc.on_refused = [raw](const std::string& peer) { raw->onRefused(peer); };
   auto made = impl->config.make_transport ? impl->config.make_transport(io, std::move(tc))
                                           : makeTransport(url, io, std::move(tc));
   if (!made.transport)

@@ -3,6 +3,8 @@
 //   serial:///dev/ttyUSB0?baud=115200      (also Bluetooth SPP: serial:///dev/rfcomm0)
 //   tcp://host:5760                         (client)   tcp://:5760?listen=1 (server)
 //   udp://:14550                            (listen)   udp://host:14550     (send to)
+// Listeners bind loopback (127.0.0.1) unless an address is given: tcp://0.0.0.0:5760?listen=1
+// and udp://0.0.0.0:14550 listen on every interface (comms/transport/transport_factory.hpp).
 // Query parameters other than the known ones are kept in `options`.
 
 #include <cstdint>

@@ -53,6 +53,10 @@ void FrameDecoder::reset() {
   newest_timestamp_ = 0;
 }
 
+void FrameDecoder::setSigningClock(std::uint64_t now) {
+  newest_timestamp_ = std::max(newest_timestamp_, now);
+}
+
 void FrameDecoder::setSigningKey(std::optional<SigningKey> key, bool require_signed) {
   config_.signing_key = key;
   config_.require_signed = require_signed;

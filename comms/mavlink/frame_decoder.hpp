@@ -71,6 +71,11 @@ class FrameDecoder {
   void reset();
 
   void setSigningKey(std::optional<SigningKey> key, bool require_signed);
+  // The receiver's own signing clock (signingTimestampAt(now)): a new signing stream whose first
+  // timestamp is more than 60 s older than this (or than the newest verified timestamp) is a
+  // replay. Without it a freshly started receiver would accept a recording of any age. Never
+  // moves the clock back.
+  void setSigningClock(std::uint64_t now);
 
  private:
   enum class Step { kNeedMore, kRejected, kConsumed };

@@ -12,6 +12,10 @@ OpenRemoteRobotResult openRemoteRobot(std::shared_ptr<IoThread> io, const LinkUr
   OpenRemoteRobotResult out;
   const std::string name = config.name.empty() ? url.toString() : std::move(config.name);
   if (isArcosUrl(url)) {
+    if (config.mavlink.link.signing_key) {
+      out.error = "a signing key is MAVLink's: ARCOS has no signing";
+      return out;
+    }
     ArcosRobot::OpenResult opened =
         ArcosRobot::open(std::move(io), url, profile, std::move(config.arcos));
     if (opened.robot)

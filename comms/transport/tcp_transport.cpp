@@ -8,7 +8,11 @@
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/write.hpp>
 
+#include <sys/socket.h>
+
 #include <array>
+#include <cerrno>
+#include <vector>
 
 namespace irgs::comms {
 namespace {
@@ -154,26 +158,74 @@ class TcpClientCore final : public TcpStreamCore {
   asio::steady_timer timer_{io()};
 };
 
+// A client the server turned away: the refusal bytes are written, our sending side is shut down,
+// and whatever the client still sends is read and discarded until it closes or kRefusalLinger
+// passes. Closing with unread input would reset the connection, which can discard the refusal
+// before the client reads it. Holds no reference to the server: it lives on its own handlers.
+class RefusedConnection : public std::enable_shared_from_this<RefusedConnection> {
+ public:
+  static constexpr std::chrono::milliseconds kRefusalLinger{250};
+
+  RefusedConnection(tcp::socket socket, std::vector<std::uint8_t> bytes)
+      : socket_(std::move(socket)), timer_(socket_.get_executor()), bytes_(std::move(bytes)) {}
+
+  void start() {
+    timer_.expires_after(kRefusalLinger);
+    timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+      if (ec != asio::error::operation_aborted)
+        self->finish();
+    });
+    asio::async_write(
+        socket_, asio::buffer(bytes_),
+        [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+          if (ec) {
+            self->finish();
+            return;
+          }
+          boost::system::error_code ignored;
+          self->socket_.shutdown(tcp::socket::shutdown_send, ignored);
+          self->drain();
+        });
+  }
+
+ private:
+  void drain() {
+    socket_.async_read_some(
+        asio::buffer(sink_),
+        [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
+          if (ec)
+            self->finish();
+          else
+            self->drain();
+        });
+  }
+  void finish() {
+    timer_.cancel();
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+  }
+
+  tcp::socket socket_;
+  asio::steady_timer timer_;
+  std::vector<std::uint8_t> bytes_;
+  std::array<std::uint8_t, 512> sink_{};
+};
+
 class TcpServerCore final : public TcpStreamCore {
  public:
   TcpServerCore(IoThread& io, TcpServerOptions options, TransportCallbacks callbacks)
       : TcpStreamCore(io, options.tx_queue_bytes,
-                      "tcp server " +
-                          (options.host.empty() ? std::string("0.0.0.0") : options.host) + ":" +
-                          std::to_string(options.port),
+                      "tcp server " + bindHost(options) + ":" + std::to_string(options.port),
                       std::move(callbacks)),
         options_(std::move(options)) {}
 
  protected:
   void doOpen() override {
     boost::system::error_code ec;
-    asio::ip::address address = asio::ip::address_v4::any();
-    if (!options_.host.empty()) {
-      address = asio::ip::make_address(options_.host, ec);
-      if (ec) {
-        fail("tcp server: '" + options_.host + "' is not a local IP address");
-        return;
-      }
+    const asio::ip::address address = asio::ip::make_address(bindHost(options_), ec);
+    if (ec) {
+      fail("tcp server: '" + options_.host + "' is not a local IP address");
+      return;
     }
     const tcp::endpoint endpoint(address, options_.port);
     acceptor_.open(endpoint.protocol(), ec);
@@ -210,6 +262,10 @@ class TcpServerCore final : public TcpStreamCore {
   }
 
  private:
+  static std::string bindHost(const TcpServerOptions& options) {
+    return options.host.empty() ? std::string(kLoopbackAddress) : options.host;
+  }
+
   void startAccept(std::uint64_t session) {
     acceptor_.async_accept([self = self<TcpServerCore>(), session](
                                const boost::system::error_code& ec, tcp::socket socket) {
@@ -229,7 +285,18 @@ class TcpServerCore final : public TcpStreamCore {
       fail("accept failed on " + listening_ + ": " + ec.message());
       return;
     }
+    if (socket_.is_open() && peerHasClosed()) {
+      // A client reconnecting: its FIN and the new SYN arrive together, and the accept may
+      // complete before the read that would see the FIN. It has left; do not refuse its return.
+      onConnectionLost("connection closed by peer");
+    }
     const bool replacing = socket_.is_open();
+    if (replacing && clientActive()) {
+      refuse(std::move(socket));
+      startAccept(session);
+      return;
+    }
+    const std::string previous = client_;
     closeSocket();
     newGeneration();  // the previous client's reads, writes and queued bytes are void
     socket_ = std::move(socket);
@@ -237,12 +304,33 @@ class TcpServerCore final : public TcpStreamCore {
     boost::system::error_code ignored;
     client_ = endpointText(socket_.remote_endpoint(ignored));
     const auto gen = generation();
-    setState(TransportState::kOpen, "client " + client_ + " connected" +
-                                        (replacing ? " (replaced the previous client)" : ""));
+    setState(TransportState::kOpen,
+             "client " + client_ + " connected" +
+                 (replacing ? " (replaced " + previous + ", which had gone silent)" : ""));
     if (current(gen))
       startRead(gen);
     if (session == accept_session_)
       startAccept(session);
+  }
+
+  // True when the connected client has closed its side and nothing it sent is left unread (a
+  // peek at the socket, which never blocks).
+  bool peerHasClosed() {
+    std::uint8_t byte = 0;
+    const ssize_t n = ::recv(socket_.native_handle(), &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
+  }
+
+  bool clientActive() const { return !options_.peers.peer_active || options_.peers.peer_active(); }
+
+  void refuse(tcp::socket socket) {
+    boost::system::error_code ignored;
+    const std::string peer = endpointText(socket.remote_endpoint(ignored));
+    refused(peer);
+    std::vector<std::uint8_t> bytes;
+    if (options_.peers.refusal_bytes)
+      bytes = options_.peers.refusal_bytes(peer);
+    std::make_shared<RefusedConnection>(std::move(socket), std::move(bytes))->start();
   }
 
   TcpServerOptions options_;

@@ -12,12 +12,14 @@
 //    callback).
 //  * The IoThread must outlive every transport created on it.
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace irgs::comms {
 
@@ -35,6 +37,7 @@ struct TransportStats {
   std::uint64_t tx_dropped_bytes = 0;  // refused by send() (queue full, not open, no UDP peer)
                                        // or discarded from the queue by close/failure
   std::size_t tx_queued_bytes = 0;     // waiting or in flight right now
+  std::uint64_t refused_peers = 0;     // listeners: peers turned away (see on_refused)
 };
 
 struct TransportCallbacks {
@@ -42,6 +45,25 @@ struct TransportCallbacks {
   std::function<void(std::span<const std::uint8_t> bytes)> on_bytes;
   // State change, or a new status message in the same state (e.g. "listening on :5760").
   std::function<void(TransportState state, const std::string& message)> on_state;
+  // A listening transport turned a peer away because another one is attached: a second TCP
+  // client (connection closed at once), a datagram from a second UDP sender (dropped). `peer`
+  // is "address:port". Counted in TransportStats::refused_peers. Optional.
+  std::function<void(const std::string& peer)> on_refused;
+};
+
+// Who a listening transport (TCP server, UDP listener) serves: the attached peer keeps the
+// link while it is active, and a newcomer meanwhile is refused, never silently swapped in.
+// `peer_active` is asked on the io thread when another peer shows up while one is attached:
+// true keeps the attached peer (the newcomer is refused), false lets the newcomer replace it
+// (the attached peer has gone silent). When empty, the transport decides: a connected TCP client
+// stays active until it disconnects; a UDP peer stays active while it has sent a datagram within
+// `udp_peer_timeout`.
+struct PeerPolicy {
+  std::function<bool()> peer_active;
+  std::chrono::milliseconds udp_peer_timeout{3000};
+  // Bytes written to a refused TCP client before its connection is closed (a protocol's "busy"
+  // message, e.g. a MAVLink STATUSTEXT); argument: the refused peer. Empty: none.
+  std::function<std::vector<std::uint8_t>(const std::string& peer)> refusal_bytes;
 };
 
 // Default bound of the transmit queue. At 115200 baud this is ~1.4 s of traffic; a queue that

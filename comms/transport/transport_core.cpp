@@ -59,6 +59,7 @@ void TransportCore::shutdown() {
 TransportStats TransportCore::stats() const {
   TransportStats s;
   s.rx_bytes = rx_bytes_.load();
+  s.refused_peers = refused_peers_.load();
   const std::lock_guard lock(mutex_);
   s.tx_bytes = tx_bytes_;
   s.tx_dropped_bytes = tx_dropped_bytes_;
@@ -188,6 +189,13 @@ void TransportCore::deliver(std::span<const std::uint8_t> bytes) {
   const auto callbacks = callbacks_;
   if (callbacks && callbacks->on_bytes)
     callbacks->on_bytes(bytes);
+}
+
+void TransportCore::refused(const std::string& peer) {
+  refused_peers_.fetch_add(1);
+  const auto callbacks = callbacks_;
+  if (callbacks && callbacks->on_refused)
+    callbacks->on_refused(peer);
 }
 
 }  // namespace detail

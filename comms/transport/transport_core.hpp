@@ -55,6 +55,8 @@ class TransportCore : public std::enable_shared_from_this<TransportCore> {
   void deliver(std::span<const std::uint8_t> bytes);
   void writeDone(std::uint64_t gen, const boost::system::error_code& ec, std::size_t written);
   void writeDropped(std::uint64_t gen);
+  // A listener turned `peer` away: counts it and tells on_refused.
+  void refused(const std::string& peer);
   // Ends the current session's I/O: bumps the generation, discards queued bytes. Used by close,
   // fail and a TCP server whose client changes.
   void newGeneration();
@@ -81,6 +83,7 @@ class TransportCore : public std::enable_shared_from_this<TransportCore> {
   std::atomic<TransportState> state_{TransportState::kClosed};
   std::atomic<std::uint16_t> local_port_{0};
   std::atomic<std::uint64_t> rx_bytes_{0};
+  std::atomic<std::uint64_t> refused_peers_{0};
 
   mutable std::mutex mutex_;  // guards everything below
   TxQueue queue_;

@@ -99,13 +99,18 @@ TransportResult makeTransport(const LinkUrl& url, IoThread& io, TransportCallbac
       o.host = url.host;
       o.port = url.port;
       o.tx_queue_bytes = txq;
-      o.listen = url.host.empty();
+      // No host, or every interface: listen (sending to 0.0.0.0 would mean nothing).
+      o.listen = url.host.empty() || url.host == "0.0.0.0";
       if (auto e = boolOption(url, "listen", o.listen); !e.empty())
         return failure(e);
       if (!o.listen && o.host.empty())
         return failure("udp sender needs a host, e.g. udp://192.168.4.1:14555");
       if (auto e = numberOption<std::uint16_t>(url, "bind", 0, o.local_port); !e.empty())
         return failure(e);
+      long long peer_timeout_ms = o.peers.udp_peer_timeout.count();
+      if (auto e = numberOption<long long>(url, "peer_timeout_ms", 1, peer_timeout_ms); !e.empty())
+        return failure(e);
+      o.peers.udp_peer_timeout = std::chrono::milliseconds(peer_timeout_ms);
       return {makeUdpTransport(io, std::move(o), std::move(callbacks)), {}};
     }
   }

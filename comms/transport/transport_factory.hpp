@@ -2,9 +2,13 @@
 // Transports from link URLs (see comms/link/link_url.hpp). Options understood here:
 //   serial:  baud=N (parsed by LinkUrl), flow=none|rtscts (aliases: rts, hw, hardware),
 //            exclusive=0|1
-//   tcp:     listen=1 (server; host = local address, empty = any), timeout_ms=N (client connect)
-//   udp:     listen=1, or an empty host (listener); otherwise sender to host:port; bind=PORT
-//            (sender's local port)
+//   tcp:     listen=1 (server; host = local address to bind, empty = loopback 127.0.0.1,
+//            0.0.0.0 = every interface; one client at a time, a second one is refused while
+//            the first is connected), timeout_ms=N (client connect)
+//   udp:     listen=1, or an empty host or 0.0.0.0 (listener: host = local address as for tcp; the
+//   first
+//            sender is the peer, others are refused while it sent within peer_timeout_ms=N,
+//            default 3000); otherwise sender to host:port; bind=PORT (sender's local port)
 //   all:     txq=BYTES (transmit queue bound)
 // Other options are left for higher layers (the link manager) and ignored here.
 

@@ -6,6 +6,7 @@
 #include <boost/asio/ip/udp.hpp>
 
 #include <array>
+#include <chrono>
 #include <mutex>
 
 namespace irgs::comms {
@@ -32,13 +33,10 @@ class UdpCore final : public detail::TransportCore {
     }
     if (options_.listen) {
       boost::system::error_code ec;
-      asio::ip::address address = asio::ip::address_v4::any();
-      if (!options_.host.empty()) {
-        address = asio::ip::make_address(options_.host, ec);
-        if (ec) {
-          fail("udp: '" + options_.host + "' is not a local IP address");
-          return;
-        }
+      const asio::ip::address address = asio::ip::make_address(listenHost(options_), ec);
+      if (ec) {
+        fail("udp: '" + options_.host + "' is not a local IP address");
+        return;
       }
       bindAndStart(udp::endpoint(address, options_.port));
       return;
@@ -92,10 +90,13 @@ class UdpCore final : public detail::TransportCore {
   }
 
  private:
+  static std::string listenHost(const UdpOptions& o) {
+    return o.host.empty() ? std::string("127.0.0.1") : o.host;
+  }
+
   static std::string describe(const UdpOptions& o) {
     if (o.listen)
-      return "udp listener " + (o.host.empty() ? std::string("0.0.0.0") : o.host) + ":" +
-             std::to_string(o.port);
+      return "udp listener " + listenHost(o) + ":" + std::to_string(o.port);
     return "udp to " + o.host + ":" + std::to_string(o.port);
   }
 
@@ -138,14 +139,41 @@ class UdpCore final : public detail::TransportCore {
       startRead(gen);
       return;
     }
-    if (options_.listen) {
-      const std::lock_guard lock(peer_mutex_);
-      destination_ = sender_;  // reply to whoever spoke last
-      has_destination_ = true;
+    if (options_.listen && !acceptSender()) {
+      refused(endpointText(sender_));  // another sender while our peer is active: dropped
+      startRead(gen);
+      return;
     }
     deliver(std::span<const std::uint8_t>(rx_.data(), n));
     if (current(gen))
       startRead(gen);
+  }
+
+  // Listener: true when the datagram just received from sender_ is to be delivered (it is our
+  // peer, or the first sender, or it replaces a peer that has gone silent); updates the peer.
+  // The policy's callback runs without peer_mutex_ held (it may well call send()).
+  bool acceptSender() {
+    const auto now = std::chrono::steady_clock::now();
+    bool newcomer = false;
+    {
+      const std::lock_guard lock(peer_mutex_);
+      newcomer = has_destination_ && sender_ != destination_;
+    }
+    if (newcomer && peerActive(now))
+      return false;
+    {
+      const std::lock_guard lock(peer_mutex_);
+      destination_ = sender_;
+      has_destination_ = true;
+    }
+    last_peer_datagram_ = now;
+    return true;
+  }
+
+  bool peerActive(std::chrono::steady_clock::time_point now) const {
+    if (options_.peers.peer_active)
+      return options_.peers.peer_active();
+    return now - last_peer_datagram_ < options_.peers.udp_peer_timeout;
   }
 
   UdpOptions options_;
@@ -157,6 +185,7 @@ class UdpCore final : public detail::TransportCore {
   mutable std::mutex peer_mutex_;  // send() reads has_destination_ from any thread
   udp::endpoint destination_;
   bool has_destination_ = false;
+  std::chrono::steady_clock::time_point last_peer_datagram_{};  // io thread only
 };
 
 }  // namespace

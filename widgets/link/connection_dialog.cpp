@@ -97,7 +97,9 @@ ConnectionDialog::ConnectionDialog(ConnectionDialogOptions options, QWidget* par
   url_edit_->setPlaceholderText(QStringLiteral("serial:///dev/ttyUSB0?baud=115200"));
   url_edit_->setToolTip(
       tr("serial:///dev/ttyUSB0?baud=115200 (also /dev/rfcomm0), "
-         "tcp://host:5760, tcp://:5760?listen=1, udp://:14550"));
+         "tcp://host:5760, tcp://:5760?listen=1 (this computer only; "
+         "tcp://0.0.0.0:5760?listen=1 for every interface), udp://:14550 (likewise "
+         "udp://0.0.0.0:14550)"));
   url_edit_->setClearButtonEnabled(true);
 
   auto* grid = new QGridLayout(source);
@@ -136,9 +138,14 @@ ConnectionDialog::ConnectionDialog(ConnectionDialogOptions options, QWidget* par
   connect(buttons_, &QDialogButtonBox::accepted, this, &ConnectionDialog::accept);
   connect(buttons_, &QDialogButtonBox::rejected, this, &ConnectionDialog::reject);
 
+  if (options_.signing_tools.usable())
+    signing_box_ = new SigningKeyBox(options_.signing_tools, options_.signing, this);
+
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(source);
   layout->addLayout(form);
+  if (signing_box_ != nullptr)
+    layout->addWidget(signing_box_);
   layout->addWidget(preview_);
   layout->addWidget(error_);
   layout->addWidget(buttons_);
@@ -235,6 +242,10 @@ QString ConnectionDialog::protocol() const {
   return protocol_combo_->currentText();
 }
 
+SigningChoice ConnectionDialog::signing() const {
+  return signing_box_ != nullptr ? signing_box_->choice() : options_.signing;
+}
+
 QString ConnectionDialog::errorText() const {
   return error_->text();
 }
@@ -268,6 +279,8 @@ void ConnectionDialog::accept() {
     error_->show();
     return;
   }
+  if (signing_box_ != nullptr && options_.save_signing)
+    options_.save_signing(signing_box_->choice());
   QDialog::accept();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The robot-link connection dialog: pick a serial / Bluetooth port (listed by the application,
-// with names) and a baud rate, or type a link URL (serial://, tcp://, udp://), and a protocol.
+// with names) and a baud rate, or type a link URL (serial://, tcp://, udp://), and a protocol;
+// and MAVLink signing (SigningKeyBox) when the application supplies the key tools.
 // Widgets never see comms: ports come in as plain values and the URL is checked by a function
 // the application passes in.
 
@@ -9,6 +10,8 @@
 #include <QStringList>
 #include <functional>
 #include <vector>
+
+#include "widgets/link/signing_key_box.hpp"
 
 class QButtonGroup;
 class QComboBox;
@@ -36,6 +39,11 @@ struct ConnectionDialogOptions {
   QString initial_url;
   // Checks a URL: an empty string when it is usable, else the reason (shown in the dialog).
   std::function<QString(const QString& url)> validate;
+  // MAVLink signing: shown when the tools are usable, starting from `signing`; on Connect the
+  // choice is handed to `save_signing` (the application keeps it in the user's settings).
+  SigningKeyTools signing_tools;
+  SigningChoice signing;
+  std::function<void(const SigningChoice& choice)> save_signing;
 };
 
 class ConnectionDialog : public QDialog {
@@ -52,6 +60,9 @@ class ConnectionDialog : public QDialog {
   QString url() const;
   QString protocol() const;
   bool usingPort() const;
+  // The signing switch and key (options.signing unchanged when the section is not shown).
+  SigningChoice signing() const;
+  SigningKeyBox* signingBox() const { return signing_box_; }
   // The validation message of the last Connect attempt (empty when none or accepted).
   QString errorText() const;
 
@@ -84,6 +95,7 @@ class ConnectionDialog : public QDialog {
   QComboBox* protocol_combo_ = nullptr;
   QLabel* preview_ = nullptr;
   QLabel* error_ = nullptr;
+  SigningKeyBox* signing_box_ = nullptr;  // null: no signing tools
   QDialogButtonBox* buttons_ = nullptr;
 };
 

@@ -136,5 +136,15 @@ TEST(SimOptions, ConnectRefusesWhatOnlyTheSimulatorCanDo) {
   EXPECT_NE(parseSimOptions({"--connect", "tcp://h:1"}).error.find("--out"), std::string::npos);
 }
 
+TEST(SimOptions, ASigningKeyFileGoesWithConnect) {
+  const auto r =
+      parseSimOptions({"--connect", "tcp://h:1", "--out", "o", "--signing-key", "robot.key"});
+  ASSERT_TRUE(r.options) << r.error;
+  EXPECT_EQ(r.options->signing_key, "robot.key");
+  EXPECT_NE(parseSimOptions({"--map", "m", "--out", "o", "--signing-key", "robot.key"})
+                .error.find("needs --connect"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace irgs::app

@@ -131,6 +131,33 @@ TEST(MavlinkSigning, NewStreamMoreThanAMinuteOldIsRejected) {
   EXPECT_EQ(old.counters.replay_rejected, 1u);
 }
 
+// A receiver that has just started knows the time: a recording of signed frames made more than a
+// minute ago is a replay even though it opens a stream the receiver has never seen.
+TEST(MavlinkSigning, ASigningClockRefusesANewStreamMoreThanAMinuteOld) {
+  FrameEncoder recorded(1, 1);
+  recorded.enableSigning(testKey(), 0);
+  const std::uint64_t now = 1000 * kSigningTicksPerSecond;
+  const Bytes old_frame = [&] {
+    const EncodedFrame f = recorded.encode(Heartbeat{}, now - 120 * kSigningTicksPerSecond);
+    return Bytes(f.view().begin(), f.view().end());
+  }();
+  FrameDecoder unaware(DecoderConfig{.signing_key = testKey()});
+  EXPECT_EQ(unaware.feed(old_frame).frames.size(), 1u);  // without a clock: accepted
+  FrameDecoder aware(DecoderConfig{.signing_key = testKey()});
+  aware.setSigningClock(now);
+  const DecodeResult r = aware.feed(old_frame);
+  EXPECT_TRUE(r.frames.empty());
+  EXPECT_EQ(r.counters.replay_rejected, 1u);
+  // A live sender whose clock is a few seconds behind is still accepted; the clock never goes
+  // back.
+  FrameEncoder live(2, 1);
+  live.enableSigning(testKey(), 0);
+  aware.setSigningClock(now - 500 * kSigningTicksPerSecond);
+  EXPECT_EQ(
+      aware.feed(live.encode(Heartbeat{}, now - 5 * kSigningTicksPerSecond).view()).frames.size(),
+      1u);
+}
+
 TEST(MavlinkSigning, UnsignedFramesAreRejectedOnlyWhenRequired) {
   FrameEncoder plain(1, 1);
   const EncodedFrame f = plain.encode(Heartbeat{});

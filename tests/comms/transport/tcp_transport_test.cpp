@@ -6,7 +6,15 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <future>
+#include <utility>
+
+#include <boost/asio/post.hpp>
 
 namespace irgs::comms {
 namespace {
@@ -19,10 +27,11 @@ using testing::Recorder;
 struct Server {
   Recorder rec;
   std::unique_ptr<Transport> transport;
-  Server(IoThread& io, std::uint16_t port) {
+  Server(IoThread& io, std::uint16_t port, PeerPolicy peers = {}, std::string host = "127.0.0.1") {
     TcpServerOptions o;
-    o.host = "127.0.0.1";
+    o.host = std::move(host);
     o.port = port;
+    o.peers = std::move(peers);
     transport = makeTcpServerTransport(io, o, rec.callbacks());
     transport->open();
   }
@@ -90,22 +99,147 @@ TEST(TcpTransport, ClientReconnectsAfterTheServerRestartsOnTheSamePort) {
   EXPECT_EQ(asText(server->rec.bytes()), "back");
 }
 
-TEST(TcpTransport, ServerReplacesItsClientWithANewOne) {
+// Issue 24, "who may drive": a second client never takes over the connected one unannounced.
+TEST(TcpTransport, ServerRefusesASecondClientWhileTheFirstIsConnected) {
   IoThread io;
   Server server(io, 0);
   const auto port = server.port();
   Client first(io, port);
   ASSERT_TRUE(first.rec.waitState(TransportState::kOpen));
   ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(first.transport->send(asBytes("one")));
+  ASSERT_TRUE(server.rec.waitBytes(3));
+
+  Client second(io, port);
+  ASSERT_TRUE(second.rec.waitState(TransportState::kOpen));  // the OS accepts, then we close
+  second.transport->send(asBytes("two"));
+  ASSERT_TRUE(server.rec.waitRefused(1)) << server.rec.allMessages();
+  ASSERT_TRUE(second.rec.waitState(TransportState::kFailed)) << second.rec.allMessages();
+  EXPECT_EQ(server.rec.refused().front(),
+            "127.0.0.1:" + std::to_string(second.transport->localPort()));
+  EXPECT_EQ(server.transport->stats().refused_peers, 1u);
+  EXPECT_EQ(server.rec.count(TransportState::kOpen), 1u) << server.rec.allMessages();
+
+  // The first client still has the server, and nothing of the second one was delivered.
+  ASSERT_TRUE(first.transport->send(asBytes("ONE")));
+  ASSERT_TRUE(server.rec.waitBytes(6));
+  EXPECT_EQ(asText(server.rec.bytes()), "oneONE");
+  ASSERT_TRUE(server.transport->send(asBytes("to first")));
+  ASSERT_TRUE(first.rec.waitBytes(8));
+  EXPECT_EQ(asText(first.rec.bytes()), "to first");
+  EXPECT_EQ(first.transport->state(), TransportState::kOpen);
+  EXPECT_TRUE(second.rec.bytes().empty());
+}
+
+TEST(TcpTransport, ARefusedClientReadsTheRefusalBytesBeforeItsConnectionCloses) {
+  IoThread io;
+  PeerPolicy peers;
+  peers.refusal_bytes = [](const std::string& peer) {
+    const std::string text = "busy, refused " + peer;
+    return std::vector<std::uint8_t>(text.begin(), text.end());
+  };
+  Server server(io, 0, peers);
+  const auto port = server.port();
+  Client first(io, port);
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
   Client second(io, port);
   ASSERT_TRUE(second.rec.waitState(TransportState::kOpen));
-  ASSERT_TRUE(server.rec.waitMessage("replaced the previous client")) << server.rec.allMessages();
-  // The old client is disconnected; the server now talks to the new one only.
+  // It keeps sending (unread input must not turn the close into a reset that eats the refusal).
+  for (int i = 0; i < 50; ++i)
+    second.transport->send(asBytes("frame frame frame"));
+  ASSERT_TRUE(second.rec.waitState(TransportState::kFailed)) << second.rec.allMessages();
+  const std::string expected =
+      "busy, refused 127.0.0.1:" + std::to_string(second.transport->localPort());
+  EXPECT_EQ(asText(second.rec.bytes()), expected);
+  EXPECT_TRUE(first.rec.bytes().empty());
+}
+
+TEST(TcpTransport, ServerTakesANewClientWhenTheConnectedOneHasGoneSilent) {
+  IoThread io;
+  std::atomic<bool> first_active{true};
+  PeerPolicy peers;
+  peers.peer_active = [&first_active] { return first_active.load(); };
+  Server server(io, 0, peers);
+  const auto port = server.port();
+  Client first(io, port);
+  ASSERT_TRUE(first.rec.waitState(TransportState::kOpen));
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+  {
+    Client refused(io, port);
+    ASSERT_TRUE(server.rec.waitRefused(1));
+  }
+
+  first_active = false;  // e.g. irgs-robot: no ground-station heartbeat for its timeout
+  Client second(io, port);
+  ASSERT_TRUE(server.rec.waitMessage("had gone silent")) << server.rec.allMessages();
   ASSERT_TRUE(first.rec.waitState(TransportState::kFailed)) << first.rec.allMessages();
   ASSERT_TRUE(server.transport->send(asBytes("to second")));
   ASSERT_TRUE(second.rec.waitBytes(9));
   EXPECT_EQ(asText(second.rec.bytes()), "to second");
   EXPECT_TRUE(first.rec.bytes().empty());
+  EXPECT_EQ(server.transport->stats().refused_peers, 1u);
+}
+
+// A raw loopback connection (no transport, so the test controls exactly when it closes).
+int connectRaw(std::uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(port);
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0)
+    return -1;
+  return fd;
+}
+
+// A client that reconnects at once: its new connection and the end of its old one reach the
+// server in the same instant (here: while the io thread is held), and the server must not refuse
+// the client's return because of its own old connection.
+TEST(TcpTransport, AClientReconnectingAtOnceIsNotRefusedForItsOldConnection) {
+  IoThread io;
+  PeerPolicy peers;
+  peers.peer_active = [] { return true; };  // e.g. its heartbeats are recent
+  Server server(io, 0, peers);
+  const auto port = server.port();
+  const int old_fd = connectRaw(port);
+  ASSERT_GE(old_fd, 0);
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen));
+
+  std::promise<void> release;
+  std::promise<void> held;
+  boost::asio::post(io.context(), [&] {
+    held.set_value();
+    release.get_future().wait();
+  });
+  held.get_future().wait();
+  // New connection first (the kernel completes the handshake meanwhile), then the old one
+  // closes: the accept is then ready before the old socket's end of stream.
+  const int new_fd = connectRaw(port);
+  ::close(old_fd);
+  release.set_value();
+  ASSERT_GE(new_fd, 0);
+
+  ASSERT_TRUE(server.rec.waitState(TransportState::kOpen, 2)) << server.rec.allMessages();
+  EXPECT_TRUE(server.rec.refused().empty()) << server.rec.allMessages();
+  ASSERT_TRUE(server.transport->send(asBytes("back")));
+  char buf[4] = {};
+  pollfd p{new_fd, POLLIN, 0};
+  ASSERT_EQ(::poll(&p, 1, 10000), 1);
+  EXPECT_EQ(::recv(new_fd, buf, sizeof buf, MSG_WAITALL), 4);
+  EXPECT_EQ(std::string(buf, 4), "back");
+  ::close(new_fd);
+}
+
+TEST(TcpTransport, ServerListensOnLoopbackUnlessGivenAnAddress) {
+  IoThread io;
+  Server loopback(io, 0, {}, "");
+  ASSERT_TRUE(loopback.rec.waitMessage("listening on 127.0.0.1:")) << loopback.rec.allMessages();
+  EXPECT_EQ(loopback.transport->description(), "tcp server 127.0.0.1:0");
+  Server every(io, 0, {}, "0.0.0.0");
+  ASSERT_TRUE(every.rec.waitMessage("listening on 0.0.0.0:")) << every.rec.allMessages();
+  // Reachable on loopback in both cases.
+  Client client(io, every.transport->localPort());
+  ASSERT_TRUE(every.rec.waitState(TransportState::kOpen)) << every.rec.allMessages();
 }
 
 TEST(TcpTransport, ServerKeepsListeningWhenItsClientLeaves) {

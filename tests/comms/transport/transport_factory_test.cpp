@@ -46,10 +46,25 @@ TEST(TransportFactory, BuildsEachKindFromItsUrl) {
   EXPECT_EQ(describe("serial:///dev/rfcomm0?baud=9600"), "serial /dev/rfcomm0 @9600");
   EXPECT_EQ(describe("tcp://192.168.4.1:5760"), "tcp client 192.168.4.1:5760");
   EXPECT_EQ(describe("tcp://:5760"), "tcp client 127.0.0.1:5760");
-  EXPECT_EQ(describe("tcp://:5760?listen=1"), "tcp server 0.0.0.0:5760");
-  EXPECT_EQ(describe("udp://:14550"), "udp listener 0.0.0.0:14550");
   EXPECT_EQ(describe("udp://127.0.0.1:14550?listen=1"), "udp listener 127.0.0.1:14550");
   EXPECT_EQ(describe("udp://10.0.0.5:14555?bind=14550"), "udp to 10.0.0.5:14555");
+}
+
+// Issue 24, "who may drive": a listener is reachable from this computer only, unless the URL
+// names an address to bind.
+TEST(TransportFactory, ListenersBindLoopbackUnlessAnAddressIsGiven) {
+  IoThread io;
+  const auto describe = [&](const std::string& text) {
+    auto r = makeTransport(url(text), io);
+    EXPECT_TRUE(r.transport) << text << ": " << r.error;
+    return r.transport ? r.transport->description() : std::string{};
+  };
+  EXPECT_EQ(describe("tcp://:5760?listen=1"), "tcp server 127.0.0.1:5760");
+  EXPECT_EQ(describe("tcp://0.0.0.0:5760?listen=1"), "tcp server 0.0.0.0:5760");
+  EXPECT_EQ(describe("tcp://192.168.4.2:5760?listen=1"), "tcp server 192.168.4.2:5760");
+  EXPECT_EQ(describe("udp://:14550"), "udp listener 127.0.0.1:14550");
+  EXPECT_EQ(describe("udp://0.0.0.0:14550"), "udp listener 0.0.0.0:14550");
+  EXPECT_EQ(describe("udp://0.0.0.0:14550?peer_timeout_ms=500"), "udp listener 0.0.0.0:14550");
 }
 
 TEST(TransportFactory, ReportsBadOptionValuesAsErrors) {
@@ -65,6 +80,7 @@ TEST(TransportFactory, ReportsBadOptionValuesAsErrors) {
   EXPECT_NE(error("udp://h:1?bind=70000").find("bind='70000'"), std::string::npos);
   EXPECT_NE(error("udp://:1?listen=0").find("needs a host"), std::string::npos);
   EXPECT_NE(error("udp://:1?txq=1").find("txq='1'"), std::string::npos);
+  EXPECT_NE(error("udp://:1?peer_timeout_ms=0").find("peer_timeout_ms='0'"), std::string::npos);
   EXPECT_THROW(openTransport(url("serial:///dev/ttyUSB0?flow=x"), io), std::invalid_argument);
 }
 

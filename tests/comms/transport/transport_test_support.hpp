@@ -39,7 +39,22 @@ class Recorder {
       messages_.push_back(message);
       cv_.notify_all();
     };
+    cb.on_refused = [this](const std::string& peer) {
+      const std::lock_guard lock(mutex_);
+      refused_.push_back(peer);
+      cv_.notify_all();
+    };
     return cb;
+  }
+
+  // Waits until at least `count` peers have been refused.
+  bool waitRefused(std::size_t count) {
+    std::unique_lock lock(mutex_);
+    return cv_.wait_for(lock, kWait, [&] { return refused_.size() >= count; });
+  }
+  std::vector<std::string> refused() const {
+    const std::lock_guard lock(mutex_);
+    return refused_;
   }
 
   // Waits until at least `count` bytes have arrived.
@@ -107,6 +122,7 @@ class Recorder {
   std::vector<std::uint8_t> bytes_;
   std::vector<TransportState> states_;
   std::vector<std::string> messages_;
+  std::vector<std::string> refused_;
 };
 
 // A raw pty pair. The transport opens slavePath(); the test drives masterFd().
