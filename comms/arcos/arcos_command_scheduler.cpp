@@ -163,8 +163,8 @@ void ArcosCommandScheduler::refill(double now_s) {
   }
 }
 
-std::vector<std::uint8_t> ArcosCommandScheduler::emit(std::vector<std::uint8_t> payload,
-                                                      double now_s, bool bucket) {
+std::vector<std::uint8_t> ArcosCommandScheduler::issue(std::vector<std::uint8_t> payload,
+                                                       double now_s, bool bucket) {
   // An urgent stop is not held by the bucket but pays for itself: the next packets wait.
   tokens_ = bucket ? tokens_ - 1.0 : std::max(tokens_ - 1.0, -static_cast<double>(config_.burst));
   std::vector<std::uint8_t> packet = framePacket(payload);
@@ -183,7 +183,7 @@ std::vector<std::uint8_t> ArcosCommandScheduler::sendSlot(Slot& slot, const Slot
   slot.sent = command;
   slot.pending.reset();
   slot.last_sent_s = now_s;
-  return emit(commandPayload(command.command, command.argument), now_s, true);
+  return issue(commandPayload(command.command, command.argument), now_s, true);
 }
 
 std::optional<std::vector<std::uint8_t>> ArcosCommandScheduler::nextSlotChange(double now_s) {
@@ -215,7 +215,7 @@ std::optional<std::vector<std::uint8_t>> ArcosCommandScheduler::nextKeepAlive(do
   }
   if (keepalive_due) {
     ++stats_.pulses;
-    return emit(commandPayload(kPulse), now_s, true);
+    return issue(commandPayload(kPulse), now_s, true);
   }
   return std::nullopt;
 }
@@ -235,7 +235,7 @@ std::optional<std::vector<std::uint8_t>> ArcosCommandScheduler::next(double now_
     ++stats_.urgent;
     for (Slot& s : slots_)
       s.last_sent_s = now_s;  // the stop carried both zero set points
-    return emit(std::move(payload), now_s, false);
+    return issue(std::move(payload), now_s, false);
   }
   if (tokens_ < 1.0 - kEpsilon_s)
     return std::nullopt;
@@ -243,7 +243,7 @@ std::optional<std::vector<std::uint8_t>> ArcosCommandScheduler::next(double now_
     std::vector<std::uint8_t> payload = std::move(one_shots_.front());
     one_shots_.pop_front();
     ++stats_.one_shots;
-    return emit(std::move(payload), now_s, true);
+    return issue(std::move(payload), now_s, true);
   }
   if (auto change = nextSlotChange(now_s))
     return change;

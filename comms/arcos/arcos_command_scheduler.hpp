@@ -120,7 +120,7 @@ class ArcosCommandScheduler {
   double gapAfterLast() const;
   bool capAllows(double now_s) const;  // gap and window (every packet obeys them)
   void refill(double now_s);
-  std::vector<std::uint8_t> emit(std::vector<std::uint8_t> payload, double now_s, bool bucket);
+  std::vector<std::uint8_t> issue(std::vector<std::uint8_t> payload, double now_s, bool bucket);
   std::optional<std::vector<std::uint8_t>> nextSlotChange(double now_s);
   std::optional<std::vector<std::uint8_t>> nextKeepAlive(double now_s);
   std::vector<std::uint8_t> sendSlot(Slot& slot, const SlotCommand& command, double now_s);
