@@ -26,6 +26,7 @@ widgets::LinkHealth toLinkHealth(const comms::LinkStats& stats, const QString& l
   health.tx_bytes_per_s = stats.tx_bytes_per_s;
   health.rx_messages_per_s = stats.rx_messages_per_s;
   health.tx_messages_per_s = stats.tx_messages_per_s;
+  health.tx_budget_bytes_per_s = stats.tx_budget_bytes_per_s;
   health.crc_errors = stats.crc_errors;
   health.sequence_errors = stats.sequence_errors;
   health.other_errors = stats.other_errors;

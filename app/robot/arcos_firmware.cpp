@@ -56,8 +56,15 @@ Pose2 ArcosFirmware::reportedPose() const {
 void ArcosFirmware::receiveBytes(std::span<const std::uint8_t> bytes, double now_s) {
   packets_.clear();
   stats_.packets += decoder_.feed(bytes, packets_);
+  // Over a serial line the packets of one read arrived one after the other, the last one now.
+  const double byte_s = config_.link_baud ? 10.0 / *config_.link_baud : 0.0;
+  std::size_t bytes_after = 0;
   for (const arcos::Packet& packet : packets_)
-    onPacket(packet.payload(), now_s);
+    bytes_after += packet.size + arcos::kOverhead;
+  for (const arcos::Packet& packet : packets_) {
+    bytes_after -= packet.size + arcos::kOverhead;
+    onPacket(packet.payload(), now_s - static_cast<double>(bytes_after) * byte_s);
+  }
 }
 
 void ArcosFirmware::reply(std::span<const std::uint8_t> payload) {
@@ -66,42 +73,60 @@ void ArcosFirmware::reply(std::span<const std::uint8_t> payload) {
 }
 
 void ArcosFirmware::onPacket(std::span<const std::uint8_t> payload, double now_s) {
+  const bool open = state_ == ArcosServerState::kOpen;
+  if (open) {
+    command_rate_.record(now_s);
+    stats_.peak_commands_per_s = command_rate_.peak();
+  }
   const arcos::CommandParseResult parsed = arcos::parseCommand(payload);
-  if (!parsed.command) {
+  if (!parsed.command || (config_.strict && payload.size() + 2 > kStrictMaxByteCount)) {
     ++stats_.bad_commands;
     return;
   }
   const std::uint8_t number = parsed.command->command;
-  if (state_ != ArcosServerState::kOpen) {
-    // The handshake: each SYNC is echoed once the previous one was; SYNC0 always restarts it.
-    const std::uint8_t echo[1] = {number};
-    if (number == arcos::kPulse) {
-      reply(echo);
-      state_ = ArcosServerState::kWaitSync1;
-    } else if (number == 1 &&
-               (state_ == ArcosServerState::kWaitSync1 || state_ == ArcosServerState::kWaitSync2)) {
-      reply(echo);
-      state_ = ArcosServerState::kWaitSync2;
-    } else if (number == 2 && state_ == ArcosServerState::kWaitSync2) {
-      reply(arcos::encodeSync2Reply(
-          {config_.name, config_.robot_class, config_.subclass.value_or(params_.subclass)}));
-      state_ = ArcosServerState::kSynced;
-    } else if (number == arcos::kOpen && state_ == ArcosServerState::kSynced) {
-      state_ = ArcosServerState::kOpen;
-      ++stats_.opens;
-      last_command_s_ = now_s;
-      watchdog_tripped_ = false;
-      next_sip_s_ = sim_.time_s();
-      for (auto& r : sonar_cycle_m_)
-        r.reset();
-    } else if (number == arcos::kClose && state_ == ArcosServerState::kSynced) {
-      state_ = ArcosServerState::kWaitSync0;
-    }
+  if (!open) {
+    onHandshake(number, now_s);
     return;
+  }
+  if (config_.strict) {
+    if (last_taken_s_ && now_s - *last_taken_s_ < kStrictCommandSpacing_s) {
+      ++stats_.too_soon;  // the command processor was still busy with the previous one
+      return;
+    }
+    last_taken_s_ = now_s;
+    watchdog_tripped_ = false;  // any command revives the robot on its old set points
   }
   ++stats_.commands;
   last_command_s_ = now_s;
   onCommand(number, parsed.command->int_argument, now_s);
+}
+
+void ArcosFirmware::onHandshake(std::uint8_t number, double now_s) {
+  // The handshake: each SYNC is echoed once the previous one was; SYNC0 always restarts it.
+  const std::uint8_t echo[1] = {number};
+  if (number == arcos::kPulse) {
+    reply(echo);
+    state_ = ArcosServerState::kWaitSync1;
+  } else if (number == 1 &&
+             (state_ == ArcosServerState::kWaitSync1 || state_ == ArcosServerState::kWaitSync2)) {
+    reply(echo);
+    state_ = ArcosServerState::kWaitSync2;
+  } else if (number == 2 && state_ == ArcosServerState::kWaitSync2) {
+    reply(arcos::encodeSync2Reply(
+        {config_.name, config_.robot_class, config_.subclass.value_or(params_.subclass)}));
+    state_ = ArcosServerState::kSynced;
+  } else if (number == arcos::kOpen && state_ == ArcosServerState::kSynced) {
+    state_ = ArcosServerState::kOpen;
+    ++stats_.opens;
+    last_command_s_ = now_s;
+    last_taken_s_ = now_s;
+    watchdog_tripped_ = false;
+    next_sip_s_ = sim_.time_s();
+    for (auto& r : sonar_cycle_m_)
+      r.reset();
+  } else if (number == arcos::kClose && state_ == ArcosServerState::kSynced) {
+    state_ = ArcosServerState::kWaitSync0;
+  }
 }
 
 void ArcosFirmware::onCommand(std::uint8_t number, std::optional<int> argument, double /*now_s*/) {
@@ -111,8 +136,8 @@ void ArcosFirmware::onCommand(std::uint8_t number, std::optional<int> argument, 
                       isCommand(number, Command::kDHead) || isCommand(number, Command::kMove);
   if (motion) {
     if (!motors_enabled_)
-      return;  // ARCOS ignores motion commands while the motors are disabled
-    watchdog_tripped_ = false;
+      return;                   // ARCOS ignores motion commands while the motors are disabled
+    watchdog_tripped_ = false;  // lenient mode: the watchdog cleared the set points
   }
   if (number == arcos::kPulse) {
     return;
@@ -195,7 +220,7 @@ void ArcosFirmware::applyControl() {
                                 ? 0.0
                                 : std::clamp(kHeadingGain * error, -max_turn, max_turn);
   }
-  if (!motors_enabled_)
+  if (!motors_enabled_ || (config_.strict && watchdog_tripped_))
     command = {};
   sim_.setCommand(command);
 }
@@ -204,12 +229,8 @@ void ArcosFirmware::advance(double now_s) {
   const double dt = sim_.config().dt_s;
   while (sim_.time_s() + 0.5 * dt <= now_s) {
     if (state_ == ArcosServerState::kOpen && !watchdog_tripped_ &&
-        sim_.time_s() - last_command_s_ > watchdog_s_) {
-      // ARCOS's communication watchdog: no command or PULSE for watchdog_s stops the robot.
-      watchdog_tripped_ = true;
-      ++stats_.watchdog_stops;
-      stopMotion(true);
-    }
+        sim_.time_s() - last_command_s_ > watchdog_s_)
+      tripWatchdog();
     applyControl();
     sim_.step(sample_);
     if (move_remaining_m_) {
@@ -235,11 +256,18 @@ void ArcosFirmware::advance(double now_s) {
   // The clock given may run ahead of the simulator (the watchdog uses the caller's time so that
   // it also trips while the caller skips steps).
   if (state_ == ArcosServerState::kOpen && !watchdog_tripped_ &&
-      now_s - last_command_s_ > watchdog_s_) {
-    watchdog_tripped_ = true;
-    ++stats_.watchdog_stops;
+      now_s - last_command_s_ > watchdog_s_)
+    tripWatchdog();
+}
+
+void ArcosFirmware::tripWatchdog() {
+  // ARCOS's communication watchdog: no command or PULSE for watchdog_s stops the robot.
+  watchdog_tripped_ = true;
+  ++stats_.watchdog_stops;
+  if (config_.strict)
+    sim_.halt();  // the set points stay: the next command resumes them (applyControl holds)
+  else
     stopMotion(true);
-  }
 }
 
 void ArcosFirmware::collectSonar(const TelemetrySample& sample) {

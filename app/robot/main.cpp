@@ -28,8 +28,11 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "app/robot/arcos_firmware.hpp"
+#include "app/robot/arrival_rate_meter.hpp"
 #include "app/robot/drive_guard.hpp"
 #include "app/robot/firmware_core.hpp"
+#include "comms/mavlink/frame_decoder.hpp"
+#include "comms/mavlink/messages.hpp"
 #include "comms/mavlink/signing_key.hpp"
 #include "comms/transport/io_thread.hpp"
 #include "comms/transport/tcp_transport.hpp"
@@ -51,7 +54,7 @@ const char* const kUsage =
     "usage: irgs-robot [--map FILE] [--robot FILE] [--seed N] [--pty [--link PATH]]\n"
     "                  [--tcp [ADDR:]PORT | --udp [ADDR:]PORT] [--signing-key FILE]\n"
     "                  [--baud N] [--rate HZ] [--gcs-timeout S] [--ideal]\n"
-    "                  [--log-motion] [--protocol mavlink|arcos] [--watchdog S]\n"
+    "                  [--log-motion] [--protocol mavlink|arcos] [--watchdog S] [--strict]\n"
     "  Serves the simulated robot over MAVLink 2. Without --tcp or --udp it opens a\n"
     "  pseudo-terminal, prints its path (/dev/pts/N) on stdout and serves on it; --link PATH\n"
     "  also creates a symlink PATH to it. --tcp [ADDR:]PORT serves as a TCP server (0 = any\n"
@@ -74,7 +77,12 @@ const char* const kUsage =
     "  stops moving (t: firmware time, mono: CLOCK_MONOTONIC seconds, for end-to-end tests).\n"
     "  --protocol arcos: serve as a Pioneer over ARCOS/P2OS instead (docs/pioneer.md); use a\n"
     "  Pioneer profile (--robot resources/robots/pioneer_p3dx.json) and --tcp 8101 like\n"
-    "  MobileSim. --watchdog S: ARCOS PULSE watchdog (default: the profile's, 2 s).\n";
+    "  MobileSim. --watchdog S: ARCOS PULSE watchdog (default: the profile's, 2 s).\n"
+    "  --strict (ARCOS): behave as the Pioneer manuals say a real robot does: commands closer\n"
+    "  than 5 ms to the previous one are lost, malformed packets ignored, the watchdog resumes\n"
+    "  the old set points on the next command (docs/pioneer.md).\n"
+    "  On exit it prints what arrived on the wire: ARCOS command packets or MANUAL_CONTROLs,\n"
+    "  total, mean and peak per second (and, for ARCOS, what was dropped and why).\n";
 
 // A listening endpoint from --tcp / --udp: "PORT" or "ADDR:PORT".
 struct ListenSpec {
@@ -96,6 +104,7 @@ struct Options {
   bool ideal = false;
   bool log_motion = false;
   bool arcos = false;                // --protocol arcos
+  bool strict = false;               // --strict (ARCOS)
   std::optional<double> watchdog_s;  // --watchdog (ARCOS)
 };
 
@@ -149,6 +158,8 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
       o.ideal = true;
     } else if (arg == "--log-motion") {
       o.log_motion = true;
+    } else if (arg == "--strict") {
+      o.strict = true;
     } else if (arg == "--map" || arg == "--robot" || arg == "--link" || arg == "--signing-key") {
       if (!value(v) || v.empty())
         return arg + " needs a path";
@@ -199,6 +210,8 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
     return "--link needs the pty transport";
   if (!o.signing_key.empty() && o.arcos)
     return "--signing-key is MAVLink's: ARCOS has no signing";
+  if (o.strict && !o.arcos)
+    return "--strict is for --protocol arcos (the virtual Pioneer)";
   return {};
 }
 
@@ -393,6 +406,25 @@ std::function<std::vector<std::uint8_t>(const std::string&)> mavlinkRefusal(
   };
 }
 
+// What the ground station sent, as it arrived: the end-to-end tests read the peak per second.
+void printWireSummary(const irgs::app::FirmwareCore* core, const irgs::app::ArcosFirmware* arcos,
+                      const irgs::app::ArrivalRateMeter& manual_controls) {
+  if (core) {
+    std::printf("wire: MANUAL_CONTROL %s\n", manual_controls.summary().c_str());
+  } else if (arcos) {
+    const irgs::app::ArcosFirmwareStats& s = arcos->stats();
+    std::printf(
+        "wire: ARCOS command packets %s; taken %llu, lost too soon %llu, malformed %llu, "
+        "unknown %llu, watchdog stops %u%s\n",
+        arcos->commandRate().summary().c_str(), static_cast<unsigned long long>(s.commands),
+        static_cast<unsigned long long>(s.too_soon),
+        static_cast<unsigned long long>(s.bad_commands),
+        static_cast<unsigned long long>(s.unknown_commands), s.watchdog_stops,
+        arcos->config().strict ? " (strict)" : "");
+  }
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -462,6 +494,9 @@ int main(int argc, char** argv) {
     if (options.arcos) {
       irgs::app::ArcosFirmwareConfig arcos_config;
       arcos_config.watchdog_s = options.watchdog_s;
+      arcos_config.strict = options.strict;
+      if (!options.tcp_port)
+        arcos_config.link_baud = options.baud;  // the pty is paced like a UART at this baud
       arcos = std::make_unique<irgs::app::ArcosFirmware>(std::move(sim), arcos_config);
     } else {
       core = std::make_unique<irgs::app::FirmwareCore>(std::move(sim), fw_config);
@@ -470,9 +505,24 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "irgs-robot: %s\n", e.what());
     return kExitFiles;
   }
+  // What arrives on the wire, for the summary on exit: MAVLink's MANUAL_CONTROLs are counted
+  // here (ARCOS command packets by ArcosFirmware).
+  irgs::comms::mavlink::FrameDecoder tap;
+  std::vector<irgs::comms::mavlink::Frame> tapped;
+  irgs::app::ArrivalRateMeter manual_controls;
   // The served protocol, whichever it is.
-  const auto receive = [&core, &arcos](std::span<const std::uint8_t> bytes, double now_s) {
-    core ? core->receiveBytes(bytes, now_s) : arcos->receiveBytes(bytes, now_s);
+  const auto receive = [&](std::span<const std::uint8_t> bytes, double now_s) {
+    if (core) {
+      tapped.clear();
+      tap.feed(bytes, tapped);
+      for (const auto& frame : tapped) {
+        if (frame.message_id == irgs::comms::mavlink::ManualControl::kId)
+          manual_controls.record(now_s);
+      }
+      core->receiveBytes(bytes, now_s);
+    } else {
+      arcos->receiveBytes(bytes, now_s);
+    }
   };
   const auto advance = [&core, &arcos](double now_s) {
     core ? core->advance(now_s) : arcos->advance(now_s);
@@ -638,6 +688,7 @@ int main(int argc, char** argv) {
     stopped.get_future().wait();
     io.reset();
   }
+  printWireSummary(core.get(), arcos.get(), manual_controls);
   if (!options.link.empty()) {
     std::error_code ec;
     if (fs::is_symlink(options.link, ec) && pty &&

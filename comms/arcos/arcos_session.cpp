@@ -24,7 +24,8 @@ const char* toString(ArcosState state) {
   return "?";
 }
 
-ArcosClientSession::ArcosClientSession(ArcosSessionConfig config) : config_(config) {}
+ArcosClientSession::ArcosClientSession(ArcosSessionConfig config)
+    : config_(config), commands_(config.commands) {}
 
 void ArcosClientSession::setState(ArcosState state, double now_s, std::string text, bool warning) {
   state_ = state;
@@ -41,6 +42,7 @@ void ArcosClientSession::start(double now_s) {
 }
 
 void ArcosClientSession::beginSync(double now_s) {
+  commands_.reset();  // nothing wanted on the old connection goes out on the new one
   sync_step_ = 0;
   sync_attempts_ = 0;
   setState(ArcosState::kSyncing, now_s, "ARCOS: synchronising (SYNC0)");
@@ -58,12 +60,26 @@ void ArcosClientSession::stop(double now_s) {
       state_ == ArcosState::kLost) {
     queue(commandPayload(kClose));
   }
+  commands_.reset();
   setState(ArcosState::kDisconnected, now_s, "ARCOS: closed");
 }
 
 void ArcosClientSession::sendCommand(std::vector<std::uint8_t> payload) {
-  if (state_ == ArcosState::kOpening || state_ == ArcosState::kConnected)
-    queue(std::move(payload));
+  if (open())
+    commands_.sendOnce(std::move(payload));
+}
+
+void ArcosClientSession::sendUrgent(Command command) {
+  if (open())
+    commands_.sendUrgent(command);
+}
+
+void ArcosClientSession::pump(double now_s) {
+  if (!open())
+    return;
+  // The scheduler's gap lets at most one packet through per instant; the loop is for clarity.
+  while (auto packet = commands_.next(now_s))
+    outgoing_.push_back(std::move(*packet));
 }
 
 void ArcosClientSession::onPacket(const Packet& packet, double now_s) {
@@ -91,16 +107,18 @@ void ArcosClientSession::onPacket(const Packet& packet, double now_s) {
     if (!identity_)
       identity_ = RobotIdentity{};  // ARCOS allows an empty reply; carry on without names
     ++stats_.handshakes;
-    queue(commandPayload(kOpen));
+    // One command per packet, spaced by the scheduler: a server that gets them closer than a
+    // few milliseconds may drop them (arcos_command_scheduler.hpp).
+    commands_.reset();
+    commands_.sendOnce(commandPayload(kOpen));
     if (config_.enable_motors)
-      queue(commandPayload(Command::kEnable, 1));
-    queue(commandPayload(Command::kSonar, config_.enable_sonar ? 1 : 0));
-    queue(commandPayload(kPulse));
-    last_pulse_s_ = now_s;
+      commands_.sendOnce(commandPayload(Command::kEnable, 1));
+    commands_.sendOnce(commandPayload(Command::kSonar, config_.enable_sonar ? 1 : 0));
     opened_s_ = now_s;
     setState(ArcosState::kOpening, now_s,
              "ARCOS: robot \"" + identity_->name + "\" class " + identity_->robot_class +
                  " subclass " + identity_->subclass + "; opening");
+    pump(now_s);
     return;
   }
 
@@ -140,10 +158,7 @@ void ArcosClientSession::tick(double now_s) {
       return;
     case ArcosState::kOpening:
     case ArcosState::kConnected: {
-      if (now_s - last_pulse_s_ >= config_.pulse_period_s) {
-        queue(commandPayload(kPulse));
-        last_pulse_s_ = now_s;
-      }
+      pump(now_s);
       const double last = stats_.last_sip_s.value_or(opened_s_);
       if (now_s - std::max(last, opened_s_) >= config_.sip_timeout_s) {
         ++stats_.losses;

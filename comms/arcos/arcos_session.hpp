@@ -1,12 +1,16 @@
 #pragma once
 // The client side of an ARCOS connection, pure (no I/O, no clock): the SYNC0/SYNC1/SYNC2
-// handshake, OPEN, motor and sonar enabling, the PULSE watchdog and SIP-loss detection. The
-// owner feeds it received packets and the time, and writes what takeOutgoing() returns.
+// handshake, OPEN, motor and sonar enabling, SIP-loss detection, and every command after OPEN
+// paced by an ArcosCommandScheduler (changes only, keep-alive, <= 10 packets/s; see
+// arcos_command_scheduler.hpp). The owner feeds it received packets and the time, calls tick()
+// at least every 20 ms, and writes what takeOutgoing() returns.
 //
 //   kDisconnected --start()--> kSyncing: SYNC0 until echoed, then SYNC1, then SYNC2 (each
 //     resent every sync_retry_s; after max_sync_attempts without progress: CLOSE, start over)
-//   SYNC2 reply (name, class, subclass) --> OPEN, ENABLE 1, SONAR 1 --> kOpening
-//   first standard SIP --> kConnected; PULSE every pulse_period_s from then on
+//   SYNC2 reply (name, class, subclass) --> OPEN, then ENABLE 1 and SONAR 1 through the
+//     scheduler --> kOpening
+//   first standard SIP --> kConnected; the scheduler keeps the watchdog fed (a refreshed motion
+//     command or PULSE whenever nothing went out for commands.keepalive_s)
 //   no SIP for sip_timeout_s --> kLost; the handshake starts over on its own (a robot that
 //     kept running answers the first SYNC0 with SIPs, so SIPs while syncing trigger CLOSE)
 //   stop() --> CLOSE, kDisconnected.
@@ -16,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "comms/arcos/arcos_command_scheduler.hpp"
 #include "comms/arcos/arcos_packet.hpp"
 #include "comms/arcos/arcos_sip.hpp"
 
@@ -24,7 +29,7 @@ namespace irgs::comms::arcos {
 struct ArcosSessionConfig {
   double sync_retry_s = 0.3;
   int max_sync_attempts = 8;
-  double pulse_period_s = 0.5;  // ARCOS watchdog defaults to 2 s; pulse well inside it
+  ArcosCommandSchedulerConfig commands{};  // rate cap, keep-alive (PULSE) and link baud
   double sip_timeout_s = 1.5;
   bool enable_motors = true;
   bool enable_sonar = true;
@@ -58,8 +63,16 @@ class ArcosClientSession {
   void onPacket(const Packet& packet, double now_s);
   void tick(double now_s);
 
-  // Queues a command (sent only while open: kOpening/kConnected; dropped otherwise).
+  // A one-shot command through the scheduler (only while open: kOpening/kConnected; dropped
+  // otherwise). Motion set points go through commands().want() instead.
   void sendCommand(std::vector<std::uint8_t> payload);
+  // STOP or ESTOP ahead of everything else (only while open).
+  void sendUrgent(Command command);
+  // Moves the command packet due at now_s (if any) to the outgoing queue; tick() does it too.
+  void pump(double now_s);
+  // The motion slots and the pacing of everything sent after OPEN.
+  ArcosCommandScheduler& commands() { return commands_; }
+  const ArcosCommandScheduler& commands() const { return commands_; }
 
   std::vector<std::vector<std::uint8_t>> takeOutgoing();  // complete packets, in order
   std::vector<StandardSip> takeSips();
@@ -74,16 +87,17 @@ class ArcosClientSession {
   void beginSync(double now_s);
   void sendSync(double now_s);
   void queue(std::vector<std::uint8_t> payload);
+  bool open() const { return state_ == ArcosState::kOpening || state_ == ArcosState::kConnected; }
 
   ArcosSessionConfig config_;
   ArcosState state_ = ArcosState::kDisconnected;
   int sync_step_ = 0;  // 0, 1, 2: the SYNC packet awaiting its answer
   int sync_attempts_ = 0;
   double last_sync_sent_s_ = 0.0;
-  double last_pulse_s_ = 0.0;
   double opened_s_ = 0.0;
   std::optional<RobotIdentity> identity_;
   ArcosStats stats_;
+  ArcosCommandScheduler commands_;
   std::vector<std::vector<std::uint8_t>> outgoing_;
   std::vector<StandardSip> sips_;
   std::vector<ArcosEvent> events_;

@@ -67,6 +67,9 @@ struct LinkStats {
   double tx_bytes_per_s = 0.0;
   double rx_messages_per_s = 0.0;
   double tx_messages_per_s = 0.0;
+  // What the link can carry towards the robot: baud / 10 bytes/s of the serial line behind it
+  // (linkBaud of the URL); empty when unknown (TCP/UDP without a `baud` option).
+  std::optional<double> tx_budget_bytes_per_s;
   // Totals since the session was created.
   std::uint64_t rx_bytes = 0;
   std::uint64_t tx_bytes = 0;

@@ -70,9 +70,24 @@ LinkUrlResult parseLinkUrl(const std::string& text) {
     if (!port || *port == 0)
       return fail("invalid port in '" + text + "'");
     url.port = *port;
+    if (auto it = url.options.find("baud"); it != url.options.end()) {
+      const auto baud = parseNumber<std::uint32_t>(it->second);
+      if (!baud || *baud == 0)
+        return fail("invalid baud rate '" + it->second + "'");
+    }
     return {url, {}};
   }
   return fail("unknown link scheme '" + scheme + "' (use serial, tcp or udp)");
+}
+
+std::optional<std::uint32_t> linkBaud(const LinkUrl& url) {
+  if (url.scheme == LinkScheme::kSerial)
+    return url.baud;
+  const auto it = url.options.find("baud");
+  if (it == url.options.end())
+    return std::nullopt;
+  const auto baud = parseNumber<std::uint32_t>(it->second);
+  return baud && *baud > 0 ? baud : std::nullopt;
 }
 
 std::string LinkUrl::toString() const {

@@ -34,4 +34,10 @@ struct LinkUrlResult {
 
 LinkUrlResult parseLinkUrl(const std::string& text);
 
+// The baud of the serial line behind the link, which bounds its bytes per second (baud / 10):
+// a serial URL's baud; for tcp/udp the `baud` option when given (a TCP bridge to a robot's
+// UART, or a link model at that rate), else empty (unknown). parseLinkUrl rejects a `baud`
+// option that is not a positive integer on any scheme.
+std::optional<std::uint32_t> linkBaud(const LinkUrl& url);
+
 }  // namespace irgs::comms

@@ -7,6 +7,7 @@
 #include <future>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include <boost/asio/post.hpp>
@@ -123,23 +124,30 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
       decoder.reset();
       transport->open();
     }
-    session.tick(t);
+    session.tick(t);  // sends what the scheduler has due: changes, keep-alive
+    flush(t);
+  }
+
+  // A drive() before the link was up goes out once it is (a loss clears the command first, so a
+  // robot that comes back never resumes an old one).
+  void resumeWanted(double t) {
     VelocityCommand wanted;
     {
       const std::lock_guard lock(mutex);
       wanted = command;
     }
-    const bool moving = wanted.linear_mps != 0.0 || wanted.angular_radps != 0.0;
-    if (moving && t - last_command_s >= config.command_period_s)
-      sendVelocity(wanted, t);
-    flush(t);
+    if (wanted != VelocityCommand{})
+      wantVelocity(arcosVelocityArguments(wanted, profile.limits), t);
   }
 
-  void sendVelocity(const VelocityCommand& v, double t) {
-    const ArcosVelocityArguments a = arcosVelocityArguments(v, profile.limits);
-    session.sendCommand(arc::commandPayload(arc::Command::kVel, a.vel_mmps));
-    session.sendCommand(arc::commandPayload(arc::Command::kRVel, a.rvel_degps));
-    last_command_s = t;
+  // The wanted set points; the scheduler sends them when they change (and as keep-alive).
+  void wantVelocity(const ArcosVelocityArguments& a, double t) {
+    if (session.state() != arc::ArcosState::kOpening &&
+        session.state() != arc::ArcosState::kConnected)
+      return;  // nothing to drive yet (the command is cleared on a link loss anyway)
+    session.commands().want({arc::Command::kVel, a.vel_mmps});
+    session.commands().want({arc::Command::kRVel, a.rvel_degps});
+    session.pump(t);
   }
 
   void onBytes(std::span<const std::uint8_t> bytes) {
@@ -227,6 +235,8 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
       }
       if (state == arc::ArcosState::kOpening)
         converter.reset();  // a new connection: the robot may have restarted its odometry
+      if (state == arc::ArcosState::kConnected)
+        resumeWanted(t);
       published_state = state;
     }
     std::vector<arc::StandardSip> sips = session.takeSips();
@@ -283,6 +293,7 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
     stats_snapshot.tx_bytes_per_s = static_cast<double>(tx_bytes - first.tx_bytes) / span;
     stats_snapshot.rx_messages_per_s = static_cast<double>(counters.packets - first.rx) / span;
     stats_snapshot.tx_messages_per_s = static_cast<double>(tx_packets - first.tx) / span;
+    stats_snapshot.tx_budget_bytes_per_s = config.session.commands.baud / 10.0;
   }
 
   // Rate bookkeeping (caller holds `mutex`): arrival time and sonar count of every sample,
@@ -298,8 +309,13 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   void shutdownNow() {
     if (stopped)
       return;
+    // CLOSE: a robot left open would keep streaming to nobody. It is one more command packet:
+    // keep the scheduler's gap to the last one (<= 20 ms) so that the robot does not drop it.
+    const double gap_s = session.commands().gapLeft(now());
+    if (gap_s > 0.0)
+      std::this_thread::sleep_for(std::chrono::duration<double>(gap_s));
     const double t = now();
-    session.stop(t);  // CLOSE: a robot left open would keep streaming to nobody
+    session.stop(t);
     for (auto& packet : session.takeOutgoing()) {
       if (transport && transport_state == TransportState::kOpen)
         transport->send(packet);
@@ -324,7 +340,6 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   std::string last_transport_message;
   double reopen_at_s = 0.0;
   double backoff_s;
-  double last_command_s = -1e9;
   bool stopped = false;
   bool was_connected = false;
   bool stalled = false;
@@ -358,11 +373,20 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
 
 ArcosRobot::OpenResult ArcosRobot::open(IoThread& io, const LinkUrl& url, RobotProfile profile,
                                         ArcosRobotConfig config) {
-  if (!positive(config.tick_s) || !positive(config.command_period_s) ||
-      !positive(config.reconnect_initial_s) || config.reconnect_max_s < config.reconnect_initial_s)
-    return {nullptr, "arcos config: tick, command period and reconnect delays must be > 0"};
+  if (!positive(config.tick_s) || !positive(config.reconnect_initial_s) ||
+      config.reconnect_max_s < config.reconnect_initial_s)
+    return {nullptr, "arcos config: tick and reconnect delays must be > 0"};
+  // The command budget follows the link: the URL's baud, else the configured one (the
+  // Pioneer's default HostBaud, 9600: a TCP link to a real robot ends in its serial port).
+  if (const auto baud = linkBaud(url))
+    config.session.commands.baud = *baud;
   ArcosParamsResult params = arcosParamsFromProfile(profile);
-  auto impl = std::make_shared<Impl>(io, profile, params.params, config);
+  std::shared_ptr<Impl> impl;
+  try {
+    impl = std::make_shared<Impl>(io, profile, params.params, config);
+  } catch (const std::invalid_argument& e) {
+    return {nullptr, std::string("arcos config: ") + e.what()};
+  }
   for (const std::string& w : params.warnings)
     impl->pushEvent(LinkEventKind::kTransport, 0.0, LinkState::kDisconnected, 4, w);
   if (!params.found)
@@ -430,16 +454,18 @@ std::string ArcosRobot::describe() const {
 }
 
 void ArcosRobot::drive(const VelocityCommand& command) {
-  arcosVelocityArguments(command, profile_.limits);  // throws for a non-finite command
+  // Throws for a non-finite command before anything changes.
+  const ArcosVelocityArguments arguments = arcosVelocityArguments(command, profile_.limits);
   {
     const std::lock_guard lock(impl_->mutex);
     impl_->command = command;
   }
-  boost::asio::post(impl_->io.context(), [impl = impl_, command] {
+  boost::asio::post(impl_->io.context(), [impl = impl_, arguments] {
     if (impl->stopped)
       return;
-    impl->sendVelocity(command, impl->now());  // at once; repeated by onTick while non-zero
-    impl->flush(impl->now());
+    const double t = impl->now();
+    impl->wantVelocity(arguments, t);  // sent now if the scheduler allows, else on a tick
+    impl->flush(t);
   });
 }
 
@@ -451,8 +477,10 @@ void ArcosRobot::stop() {
   boost::asio::post(impl_->io.context(), [impl = impl_] {
     if (impl->stopped)
       return;
-    impl->session.sendCommand(arc::commandPayload(arc::Command::kStop));
-    impl->flush(impl->now());
+    const double t = impl->now();
+    impl->session.sendUrgent(arc::Command::kStop);  // ahead of any set point still waiting
+    impl->session.pump(t);
+    impl->flush(t);
   });
 }
 

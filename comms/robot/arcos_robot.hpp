@@ -5,11 +5,15 @@
 //
 // Threading as LinkedRobot: the transport and the pure ArcosClientSession run on the IoThread;
 // samples and console events are queued under a mutex and drained by update()/takeEvents() on
-// the caller's thread. drive() sends VEL (mm/s) and RVEL (deg/s), clamped to the profile's
-// limits, and repeats them every command_period_s while the command is non-zero; the session
-// sends PULSE every pulse_period_s, so the robot's watchdog only fires when we are gone.
-// stop() sends STOP. Each standard SIP becomes one TelemetrySample (arcos_telemetry.hpp) whose
-// time_s is the arrival time on this adapter's clock (seconds since open()).
+// the caller's thread. drive() sets the translational (VEL, mm/s) and rotational (RVEL, deg/s)
+// slots of the session's ArcosCommandScheduler, clamped to the profile's limits: a value goes
+// out only when it changed (the newest wins), the scheduler re-sends it or PULSE as the
+// keep-alive so the robot's 2 s watchdog only fires when we are gone, and never more than 10
+// command packets per second go out, within half the link's byte budget
+// (arcos_command_scheduler.hpp; the budget's baud is the URL's `baud`, else the Pioneer's default
+// 9600). A caller may call drive() as often as it likes. stop() sends STOP ahead of everything
+// else. Each standard SIP becomes one TelemetrySample (arcos_telemetry.hpp) whose time_s is the
+// arrival time on this adapter's clock (seconds since open()).
 //
 // Link loss: no SIP for sip_timeout_s -> kLost; the session re-synchronises on its own and the
 // transport is reopened (with backoff) when it fails, e.g. a USB adapter unplugged. The
@@ -36,8 +40,7 @@ struct ArcosRobotConfig {
   // Where the robot stands in the map frame when the link first opens (ArcosTelemetryConverter:
   // ARCOS counts from (0, 0, 0) at OPEN). Empty: the robot's own odometry frame.
   std::optional<Pose2> start_pose{};
-  double tick_s = 0.02;              // session clock resolution
-  double command_period_s = 0.1;     // VEL + RVEL repeat period while moving (10 Hz)
+  double tick_s = 0.02;              // session clock resolution (<= the scheduler's min gap)
   double reconnect_initial_s = 0.5;  // transport reopen backoff after a failure
   double reconnect_max_s = 4.0;
   std::size_t max_pending_samples = 2000;

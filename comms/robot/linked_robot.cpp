@@ -12,6 +12,8 @@
 #include <utility>
 #include <variant>
 
+#include "comms/robot/teleop_pacer.hpp"
+
 namespace irgs::comms {
 
 namespace mav = mavlink;
@@ -110,6 +112,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
         assembler(profile, cfg.telemetry),
         timer(io_thread.context()),
         epoch(Clock::now()),
+        pacer({cfg.teleop_period_s, cfg.teleop_min_interval_s}),
         messages(cfg.messages) {}
 
   double now() const { return std::chrono::duration<double>(Clock::now() - epoch).count(); }
@@ -141,9 +144,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     params.setTarget(robot_system);
     params.tick(t);
     flushParamsLocked();
-    if (!isZero(command) && t >= next_teleop_s) {
-      sendTeleopLocked(t);
-    }
+    pumpTeleopLocked(t);  // a change held back by the interval, or the 10 Hz repeat
   }
 
   void onFrame(const mav::Frame& frame) {
@@ -186,6 +187,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     if ((event.kind == LinkEventKind::kLinkLost || event.kind == LinkEventKind::kClosed) &&
         !isZero(command)) {
       command = {};
+      pacer.cancel();
       LinkEvent cleared;
       cleared.kind = LinkEventKind::kTransport;
       cleared.time_s = event.time_s;
@@ -220,11 +222,23 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     }
   }
 
-  void sendTeleopLocked(double t) {
-    if (link == nullptr)
+  // The newest teleop command; the pacer sends it now or when the interval allows.
+  void wantTeleopLocked(const VelocityCommand& wanted, double t) {
+    command = wanted;
+    const mav::ManualControl mc = manualControlFor(wanted, limits);
+    pacer.want({mc.x, mc.r});
+    pumpTeleopLocked(t);
+  }
+
+  void pumpTeleopLocked(double t) {
+    const std::optional<TeleopAxes> axes = pacer.next(t);
+    if (!axes || link == nullptr)
       return;
-    link->send(manualControlFor(command, limits, robot_system));
-    next_teleop_s = t + config.teleop_period_s;
+    mav::ManualControl mc;
+    mc.target = robot_system;
+    mc.x = axes->x;
+    mc.r = axes->r;
+    link->send(mc);
   }
 
   IoThread& io;
@@ -246,7 +260,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
   std::deque<LinkEvent> events;
   std::uint64_t dropped_samples = 0;
   VelocityCommand command;
-  double next_teleop_s = 0.0;
+  TeleopPacer pacer;
   ParamClient params;
   MessageSampler messages;
 };
@@ -258,6 +272,9 @@ LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, Robo
     return {nullptr,
             "linked robot: teleop_period_s must be in (0, 0.25] s (the firmware stops the motors "
             "when MANUAL_CONTROL pauses for 0.3 s)"};
+  if (!std::isfinite(config.teleop_min_interval_s) || config.teleop_min_interval_s <= 0.0 ||
+      config.teleop_min_interval_s > config.teleop_period_s)
+    return {nullptr, "linked robot: teleop_min_interval_s must be in (0, teleop_period_s]"};
   if (!(profile.limits.max_speed_mps > 0.0) || !(profile.limits.max_turn_rate_radps > 0.0))
     return {nullptr, "linked robot: the robot profile's max speed and turn rate must be > 0"};
   std::shared_ptr<State> state;
@@ -275,6 +292,8 @@ LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, Robo
 
   std::unique_ptr<LinkedRobot> robot(
       new LinkedRobot(std::move(profile), url.toString(), std::move(config)));
+  if (const auto baud = linkBaud(url))
+    robot->tx_budget_bytes_per_s_ = *baud / 10.0;  // a UART's 10 bits per byte
   robot->state_ = state;
   {
     const std::lock_guard lock(state->mutex);
@@ -294,10 +313,8 @@ LinkedRobot::~LinkedRobot() {
   // firmware's teleop expiry stops it anyway).
   {
     const std::lock_guard lock(state_->mutex);
-    if (!isZero(state_->command)) {
-      state_->command = {};
-      state_->sendTeleopLocked(state_->now());
-    }
+    if (!isZero(state_->command))
+      state_->wantTeleopLocked({}, state_->now());  // unless the interval holds it back
   }
   IoThread& io = state_->io;
   if (io.isCurrentThread() || !io.running()) {
@@ -329,19 +346,16 @@ void LinkedRobot::drive(const VelocityCommand& command) {
   if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps))
     throw std::invalid_argument("LinkedRobot::drive: non-finite velocity");
   const std::lock_guard lock(state_->mutex);
-  const bool changed = !(command == state_->command);
-  state_->command = command;
-  // A new command goes out at once; an unchanged non-zero one keeps its 10 Hz rhythm (the
-  // timer), so calling drive() every frame does not flood the link.
-  if (changed)
-    state_->sendTeleopLocked(state_->now());
+  // A change goes out at once unless the last MANUAL_CONTROL is younger than the interval (then
+  // the timer sends the newest); an unchanged non-zero one keeps its 10 Hz rhythm. Calling
+  // drive() every millisecond does not flood the link.
+  state_->wantTeleopLocked(command, state_->now());
 }
 
 void LinkedRobot::stop() {
   {
     const std::lock_guard lock(state_->mutex);
-    state_->command = {};
-    state_->sendTeleopLocked(state_->now());  // zero MANUAL_CONTROL: stops teleop at once
+    state_->wantTeleopLocked({}, state_->now());  // zero MANUAL_CONTROL: ends teleop
   }
   link_->sendCommand(behaviourCommandLong({.kind = RobotBehaviourKind::kStop}));
 }
@@ -386,7 +400,9 @@ LinkState LinkedRobot::linkState() const {
 }
 
 LinkStats LinkedRobot::linkStats() const {
-  return link_->stats();
+  LinkStats stats = link_->stats();
+  stats.tx_budget_bytes_per_s = tx_budget_bytes_per_s_;
+  return stats;
 }
 
 std::vector<LinkEvent> LinkedRobot::takeEvents() {
@@ -417,14 +433,14 @@ void LinkedRobot::sendBehaviour(const RobotBehaviourCommand& command, CommandCal
   if (command.kind == RobotBehaviourKind::kStop ||
       command.kind == RobotBehaviourKind::kEmergencyStop) {
     const std::lock_guard lock(state_->mutex);
-    if (!isZero(state_->command)) {
-      state_->command = {};
-      state_->sendTeleopLocked(state_->now());
-    }
+    if (!isZero(state_->command))
+      state_->wantTeleopLocked({}, state_->now());
   } else {
-    // A behaviour replaces teleop (the firmware ends it on a non-neutral MANUAL_CONTROL).
+    // A behaviour replaces teleop on the robot: no MANUAL_CONTROL may follow it (a non-neutral
+    // one would end the behaviour), so whatever the pacer still held is dropped.
     const std::lock_guard lock(state_->mutex);
     state_->command = {};
+    state_->pacer.cancel();
   }
   link_->sendCommand(c, std::move(done));
 }

@@ -4,10 +4,12 @@
 //
 // Threading: the Link delivers frames on the io thread; LinkedRobot converts them to
 // TelemetrySamples under a mutex and update() (called from the GUI thread or the irgs-sim loop)
-// drains them, oldest first. drive()/stop() store the command; while the commanded velocity is
-// non-zero it is re-sent as MANUAL_CONTROL every teleop_period_s (the firmware stops the motors
-// when these stop arriving, docs/protocol.md section 11); stop() sends one zero MANUAL_CONTROL
-// at once and IRGS_STOP as an acknowledged command.
+// drains them, oldest first. drive()/stop() store the command and a TeleopPacer decides when a
+// MANUAL_CONTROL goes (teleop_pacer.hpp): a change at once but never two closer than
+// teleop_min_interval_s (the newest wins; <= 18.2/s whatever the caller does), a non-zero
+// command repeated every teleop_period_s (the firmware stops the motors when these stop
+// arriving, docs/protocol.md section 11); stop() sends a zero MANUAL_CONTROL (at once, or when
+// the interval allows) and IRGS_STOP as an acknowledged command.
 //
 // Samples: one TelemetrySample per odometry time stamp (LOCAL_POSITION_NED + ATTITUDE,
 // ODOMETRY or IRGS_POSE_2D), with the sonar readings (DISTANCE_SENSOR / IRGS_SONAR_SCAN) of that
@@ -43,6 +45,9 @@ namespace irgs::comms {
 struct LinkedRobotConfig {
   LinkConfig link{};
   double teleop_period_s = 0.1;  // MANUAL_CONTROL repeat period while moving (10 Hz)
+  // Never two MANUAL_CONTROLs closer than this (<= teleop_period_s): at most 18.2/s, under the
+  // 20/s cap of issue 24 with room for arrival jitter.
+  double teleop_min_interval_s = 0.055;
   // Samples kept while nobody calls update(); older ones are dropped (and counted).
   std::size_t max_pending_samples = 2000;
   // How telemetry frames become samples (release on pose or by time stamp, hold time).
@@ -131,6 +136,7 @@ class LinkedRobot final : public Robot {
   LinkedRobotConfig config_;
   std::shared_ptr<State> state_;
   std::unique_ptr<Link> link_;
+  std::optional<double> tx_budget_bytes_per_s_;  // from the URL's baud (LinkStats)
 };
 
 }  // namespace irgs::comms

@@ -31,6 +31,15 @@ TEST(LinkUrl, ParsesUdpWithEmptyHost) {
   EXPECT_EQ(r.url->port, 14550);
 }
 
+TEST(LinkUrl, TheBaudBehindALinkIsTheSerialBaudOrTheTcpBaudOption) {
+  EXPECT_EQ(linkBaud(*parseLinkUrl("serial:///dev/ttyUSB0?baud=9600").url), 9600u);
+  EXPECT_EQ(linkBaud(*parseLinkUrl("serial:///dev/ttyUSB0").url), 57600u);  // the default
+  EXPECT_EQ(linkBaud(*parseLinkUrl("tcp://robot:8101?protocol=arcos&baud=38400").url), 38400u);
+  EXPECT_EQ(linkBaud(*parseLinkUrl("tcp://robot:8101?protocol=arcos").url), std::nullopt);
+  EXPECT_EQ(linkBaud(*parseLinkUrl("udp://:14550").url), std::nullopt);
+  EXPECT_NE(parseLinkUrl("tcp://robot:8101?baud=0").error.find("baud"), std::string::npos);
+}
+
 TEST(LinkUrl, RejectsBadInputWithAReason) {
   EXPECT_FALSE(parseLinkUrl("ttyUSB0").url);
   EXPECT_NE(parseLinkUrl("serial:///dev/ttyUSB0?baud=fast").error.find("baud"), std::string::npos);

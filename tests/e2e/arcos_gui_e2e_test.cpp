@@ -1,6 +1,7 @@
 // End to end over ARCOS (issue 8 acceptance): irgs (offscreen, --connect
 // serial://…?protocol=arcos, driven through --control-stdin, observed through its status and
-// console lines) and `irgs-robot --protocol arcos`, the virtual Pioneer, on a real
+// console lines) and `irgs-robot --protocol arcos --strict`, the virtual Pioneer keeping the
+// rules of a real one (commands closer than 5 ms lost, malformed packets ignored), on a real
 // pseudo-terminal at 115200 baud (--log-motion tells when the robot starts and stops moving on
 // CLOCK_MONOTONIC).
 //
@@ -10,7 +11,8 @@
 //     watchdog_s after the last command (not sooner: PULSEs and VELs kept it alive until then).
 //  2. Map building (the Plan tab's MapBuildingMission, host side) runs through ARCOS on the
 //     bundled 2.5 m thesis arena and completes: outline closed, the box circumnavigated, the
-//     built map saved.
+//     built map saved; the strict robot lost no command, and never got more than 10 command
+//     packets in a second (issue 24; its exit summary counts them as they arrived).
 //
 // Waits are deadline loops on output lines, generous for a loaded 2-core machine (a slow start
 // only makes a test wait longer, never fail). The robot runs in real time, so map building
@@ -40,12 +42,14 @@ using std::chrono::milliseconds;
 using std::chrono::seconds;
 
 constexpr double kWatchdog_s = 2.0;  // the Pioneer profiles' arcos.watchdog_s (ARCOS default)
-// After the kill nothing reaches the robot; the last VEL/RVEL (10 Hz while driving) or PULSE
-// (every 0.5 s) was at most 0.5 s before it, so the watchdog fires within [watchdog - 0.5,
-// watchdog] of the kill, plus one firmware step and the motion log.
+// After the kill nothing reaches the robot; the last packet (a changed set point, or the
+// keep-alive: VEL/RVEL re-sent or PULSE, every 0.5 s) was at most 0.5 s before it, so the
+// watchdog fires within [watchdog - 0.5, watchdog] of the kill, plus one firmware step and the
+// motion log.
 constexpr double kStopLowerBound_s = kWatchdog_s - 0.5 - 0.1;
 constexpr double kStopUpperBound_s = kWatchdog_s + 0.5;
-constexpr double kSipRate_hz = 10.0;  // arcos.sip_cycle_ms = 100
+constexpr double kSipRate_hz = 10.0;                  // arcos.sip_cycle_ms = 100
+constexpr double kMaxCommandPacketsPerSecond = 10.0;  // issue 24
 constexpr double kSipRateTolerance_hz = 1.0;
 // Real time: about 10 s per metre of path on a quiet machine (100-140 s for 10.6-13.3 m on
 // 2026-12-03, before and after turnStep; 139 s / 14.2 m on 2026-12-04). Outliers: 6.7 min once
@@ -99,9 +103,9 @@ class ArcosGuiEndToEnd : public ::testing::Test {
   // them (nextMotion, stopDelayAfter) may ask for: unread, the lines of a long run fill the pipe
   // (64 KiB) and the robot blocks on its next one, silent on the link for good.
   void startRobot(const std::string& map, const std::string& robot, bool log_motion) {
-    std::vector<std::string> args{IRGS_ROBOT_EXE, "--protocol",    "arcos",  "--map", resource(map),
-                                  "--robot",      resource(robot), "--link", link_,   "--baud",
-                                  "115200",       "--seed",        "3"};
+    std::vector<std::string> args{
+        IRGS_ROBOT_EXE,  "--protocol", "arcos", "--strict", "--map",  resource(map), "--robot",
+        resource(robot), "--link",     link_,   "--baud",   "115200", "--seed",      "3"};
     if (log_motion)
       args.push_back("--log-motion");
     robot_ = std::make_unique<ChildProcess>(args);
@@ -241,7 +245,7 @@ TEST_F(ArcosGuiEndToEnd, ShowsTheRobotFromTheHandshakeDrivesGrowsTheGridAndStops
               text(driving, "odom_hz").c_str(), text(driving, "sonar_readings_per_s").c_str(),
               explored0, text(driving, "explored_m2").c_str());
 
-  // Still driving (the GUI repeats VEL/RVEL): the kill leaves the robot to its watchdog.
+  // Still driving (the keep-alive re-sends VEL/RVEL): the kill leaves the robot to its watchdog.
   const double killed_s = monotonicNow_s();
   gui_->kill(SIGKILL);
   const auto delay = stopDelayAfter(killed_s, 10.0);
@@ -291,6 +295,28 @@ TEST_F(ArcosGuiEndToEnd, MapBuildingThroughArcosCompletesOnTheThesisArena) {
   const std::string png = (dir_ / "window.png").string();
   EXPECT_EQ(command("screenshot " + png), "ok screenshot");
   EXPECT_GT(fs::file_size(png), 10000u);
+
+  // What the ground station sent during all of it, as the strict robot counted it on arrival.
+  gui_.reset();
+  robot_->kill(SIGTERM);
+  std::string wire;
+  while (auto line = robot_->readLine(Clock::now() + seconds(10))) {
+    if (line->rfind("wire:", 0) == 0) {
+      wire = *line;
+      break;
+    }
+  }
+  ASSERT_FALSE(wire.empty()) << "irgs-robot printed no wire summary";
+  std::printf("%s\n", wire.c_str());
+  const auto figure = [&wire](const std::string& key) {
+    const auto at = wire.find(key);
+    return at == std::string::npos ? -1.0 : std::strtod(wire.c_str() + at + key.size(), nullptr);
+  };
+  EXPECT_GT(figure("peak "), 0.0) << wire;
+  EXPECT_LE(figure("peak "), kMaxCommandPacketsPerSecond) << wire;
+  EXPECT_EQ(figure("lost too soon "), 0.0) << wire;
+  EXPECT_EQ(figure("malformed "), 0.0) << wire;
+  EXPECT_EQ(figure("watchdog stops "), 0.0) << wire;
 }
 
 }  // namespace

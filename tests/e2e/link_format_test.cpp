@@ -12,6 +12,7 @@ TEST(LinkFormat, StatisticsBecomeTheHealthPanelValuesUnchanged) {
   stats.state = comms::LinkState::kLost;
   stats.rx_bytes_per_s = 1234.5;
   stats.tx_messages_per_s = 11.0;
+  stats.tx_budget_bytes_per_s = 960.0;
   stats.crc_errors = 4;
   stats.sequence_errors = 9;
   stats.other_errors = 2;
@@ -26,6 +27,7 @@ TEST(LinkFormat, StatisticsBecomeTheHealthPanelValuesUnchanged) {
   EXPECT_EQ(health.link, QStringLiteral("tcp://robot:5760"));
   EXPECT_DOUBLE_EQ(health.rx_bytes_per_s, 1234.5);
   EXPECT_DOUBLE_EQ(health.tx_messages_per_s, 11.0);
+  EXPECT_EQ(health.tx_budget_bytes_per_s, std::optional<double>(960.0));
   EXPECT_EQ(health.crc_errors, 4u);
   EXPECT_EQ(health.sequence_errors, 9u);
   EXPECT_EQ(health.other_errors, 2u);

@@ -64,6 +64,10 @@ LinkHealthPanel::LinkHealthPanel(QWidget* parent) : QWidget(parent) {
   rx_ = addField(tr("Received"), "linkRx",
                  tr("Bytes and MAVLink messages per second from the robot"));
   tx_ = addField(tr("Sent"), "linkTx", tr("Bytes and MAVLink messages per second to the robot"));
+  tx_budget_ = addSecondField(tx_, "linkTxBudget",
+                              tr("Share of what the link carries towards the robot (baud / 10 "
+                                 "bytes per second; the URL's baud). Commands should stay well "
+                                 "under half of it"));
   // Two values per row where they belong together: the side column is narrow.
   errors_ = addField(tr("Errors"), "linkErrors",
                      tr("Frames with a bad checksum (CRC), frames missing by sequence number, "
@@ -164,6 +168,14 @@ void LinkHealthPanel::setHealth(const LinkHealth& health) {
   link_->setToolTip(link);
   rx_->setText(rate(health.rx_bytes_per_s, health.rx_messages_per_s));
   tx_->setText(rate(health.tx_bytes_per_s, health.tx_messages_per_s));
+  const std::optional<double>& budget = health.tx_budget_bytes_per_s;
+  const bool known = budget && std::isfinite(*budget) && *budget > 0.0;
+  const double share = known ? health.tx_bytes_per_s / *budget : 0.0;
+  tx_budget_->setText(
+      known ? tr("%1 % of %2 B/s").arg(share * 100.0, 0, 'f', 0).arg(*budget, 0, 'f', 0)
+            : tr("budget unknown"));
+  tx_budget_->setStyleSheet(share > kTxBudgetWarnShare ? QStringLiteral("color: #c62828;")
+                                                       : QString());
   errors_->setText(QStringLiteral("CRC %1 · seq %2 · other %3")
                        .arg(health.crc_errors)
                        .arg(health.sequence_errors)

@@ -23,6 +23,7 @@ struct LinkHealth {
   double tx_bytes_per_s = 0.0;
   double rx_messages_per_s = 0.0;
   double tx_messages_per_s = 0.0;
+  std::optional<double> tx_budget_bytes_per_s;  // baud / 10 of the link; empty: unknown
   std::uint64_t crc_errors = 0;
   std::uint64_t sequence_errors = 0;  // frames missing (sequence gaps)
   std::uint64_t other_errors = 0;     // bad length, unknown id, signature ...
@@ -40,6 +41,8 @@ class LinkHealthPanel : public QWidget {
  public:
   // A heartbeat older than this is shown as a warning (the robot sends one per second).
   static constexpr double kHeartbeatWarn_s = 1.2;
+  // Sent bytes above this share of the link's budget are shown as a warning.
+  static constexpr double kTxBudgetWarnShare = 0.5;
 
   explicit LinkHealthPanel(QWidget* parent = nullptr);
 
@@ -66,6 +69,7 @@ class LinkHealthPanel : public QWidget {
   QLabel* link_ = nullptr;
   QLabel* rx_ = nullptr;
   QLabel* tx_ = nullptr;
+  QLabel* tx_budget_ = nullptr;
   QLabel* errors_ = nullptr;
   QLabel* loss_ = nullptr;
   QLabel* rtt_ = nullptr;

@@ -1,8 +1,8 @@
-// End to end: the irgs-robot executable serving ARCOS (`--protocol arcos --tcp 0` with the P3-DX
-// profile on the bundled default map) driven by ArcosRobot over loopback TCP as the ground
-// station drives a Pioneer: the sonar grid grows while it turns, and the robot stops by itself
-// when the ground station stops sending (PULSE watchdog). Every wait has a deadline; the child
-// is always reaped.
+// End to end: the irgs-robot executable serving ARCOS (`--protocol arcos --strict --tcp 0` with
+// the P3-DX profile on the bundled default map) driven by ArcosRobot over loopback TCP as the
+// ground station drives a Pioneer: the sonar grid grows while it turns, and the robot stops by
+// itself when the ground station stops sending (PULSE watchdog). Every wait has a deadline; the
+// child is always reaped.
 
 #include <poll.h>
 #include <signal.h>
@@ -87,8 +87,8 @@ class Child {
 TEST(ArcosEndToEnd, SonarGridGrowsAndTheRobotStopsWhenPulsesStop) {
   const std::string profile_path =
       std::string(IRGS_SOURCE_DIR) + "/resources/robots/pioneer_p3dx.json";
-  Child child({IRGS_ROBOT_EXE, "--protocol", "arcos", "--robot", profile_path, "--tcp", "0",
-               "--seed", "3"});
+  Child child({IRGS_ROBOT_EXE, "--protocol", "arcos", "--strict", "--robot", profile_path, "--tcp",
+               "0", "--seed", "3"});
   const auto line = child.readLine(20.0);
   ASSERT_TRUE(line.has_value()) << "irgs-robot printed no port";
   ASSERT_EQ(line->rfind("tcp ", 0), 0u) << *line;
@@ -98,11 +98,12 @@ TEST(ArcosEndToEnd, SonarGridGrowsAndTheRobotStopsWhenPulsesStop) {
   ASSERT_TRUE(profile.profile);
   irgs::comms::IoThread io;
   irgs::comms::ArcosRobotConfig config;
-  // The test plays the ground station's keep-alive itself: every drive() sends VEL/RVEL at once,
-  // no PULSE and no repeats, so when it stops calling drive() the robot hears nothing.
-  config.session.pulse_period_s = 1000.0;
+  // The test plays the ground station's keep-alive itself: no PULSE and no refresh, and every
+  // drive() below is a change (45 and 46 deg/s in turn), which goes out at once; so when it stops
+  // calling drive() the robot hears nothing.
+  config.session.commands.keepalive_s = 1000.0;
+  config.session.commands.refresh_s = 1000.0;
   config.session.sip_timeout_s = 5.0;
-  config.command_period_s = 1000.0;
   auto parsed = irgs::comms::parseLinkUrl(url_text);
   ASSERT_TRUE(parsed.url) << parsed.error;
   auto opened = irgs::comms::ArcosRobot::open(io, *parsed.url, *profile.profile, config);
@@ -131,9 +132,10 @@ TEST(ArcosEndToEnd, SonarGridGrowsAndTheRobotStopsWhenPulsesStop) {
   const std::uint64_t cells_at_start = grid.observedCellCount();
   t0 = Clock::now();
   double next_drive = 0.0;
+  int drives = 0;
   while (since(t0) < 4.0) {
     if (since(t0) >= next_drive) {
-      robot.drive({0.0, irgs::degToRad(45.0)});
+      robot.drive({0.0, irgs::degToRad(drives++ % 2 == 0 ? 45.0 : 46.0)});
       next_drive += 0.5;
     }
     drain();

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -325,6 +326,110 @@ TEST(ArcosFirmware, OdometryWrapsAt15BitsAndTheClientUnwrapsItOverFortyMetres) {
   EXPECT_GT(last.odometry_pose.x, 32.8);
   EXPECT_NEAR(last.odometry_pose.x, c.fw.reportedPose().x, 0.25);  // SIP is up to 100 ms old
   EXPECT_NEAR(last.odometry_pose.y, 0.0, 0.002);
+}
+
+// Strict mode: what the Pioneer manuals say a real robot does with a client that breaks the
+// rules (app/robot/arcos_firmware.hpp, docs/pioneer.md "Strict mode").
+ArcosFirmwareConfig strict(std::optional<std::uint32_t> link_baud = std::nullopt) {
+  ArcosFirmwareConfig config;
+  config.strict = true;
+  config.link_baud = link_baud;
+  return config;
+}
+
+std::vector<std::uint8_t> concat(std::vector<std::uint8_t> a, const std::vector<std::uint8_t>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(ArcosFirmware, StrictModeLosesACommandCloserThanFiveMillisecondsToThePrevious) {
+  Client c("p3dx", true, strict());
+  c.handshake();
+  c.t += 0.02;
+  // VEL and RVEL written back to back (the client before issue 24): over TCP they arrive
+  // together, and the command processor takes only the first.
+  c.send(
+      concat(arcos::commandPacket(Command::kVel, 200), arcos::commandPacket(Command::kRVel, 20)));
+  c.run(1.0, 0.5);
+  EXPECT_EQ(c.fw.stats().too_soon, 1u);
+  EXPECT_NEAR(c.fw.simulator().trueVelocity().linear_mps, 0.2, 0.01);
+  EXPECT_EQ(c.fw.simulator().trueVelocity().angular_radps, 0.0) << "the RVEL was lost";
+  // 3 ms later is still too soon; 5 ms later is taken.
+  c.t += 0.01;
+  c.command(Command::kRVel, 20);
+  c.t += 0.003;
+  c.command(Command::kRVel, 30);
+  c.t += 0.005;
+  c.command(Command::kSetO);
+  EXPECT_EQ(c.fw.stats().too_soon, 2u);
+  EXPECT_EQ(c.fw.stats().commands, 2u + 3u);  // VEL, 2 PULSEs, RVEL 20, SETO
+}
+
+TEST(ArcosFirmware, StrictModeOnASerialLineSpreadsAReadAtTheBytesTime) {
+  // At 9600 baud a 9-byte packet takes 9.4 ms on the wire: the same two packets in one read
+  // arrived that far apart, and both are taken.
+  Client c("p3dx", true, strict(9600));
+  c.handshake();
+  c.t += 0.02;
+  c.send(
+      concat(arcos::commandPacket(Command::kVel, 200), arcos::commandPacket(Command::kRVel, 20)));
+  EXPECT_EQ(c.fw.stats().too_soon, 0u);
+  EXPECT_EQ(c.fw.stats().commands, 2u);
+  // At 115200 baud the second follows 0.8 ms after the first: lost.
+  Client fast("p3dx", true, strict(115200));
+  fast.handshake();
+  fast.t += 0.02;
+  fast.send(
+      concat(arcos::commandPacket(Command::kVel, 200), arcos::commandPacket(Command::kRVel, 20)));
+  EXPECT_EQ(fast.fw.stats().too_soon, 1u);
+}
+
+TEST(ArcosFirmware, StrictModeIgnoresAPacketWithMoreThanOneCommand) {
+  Client c("p3dx", true, strict());
+  c.handshake();
+  c.t += 0.02;
+  // VEL 200 and RVEL 20 in one packet: not a command ARCOS knows.
+  c.send(arcos::framePacket(concat(arcos::commandPayload(Command::kVel, 200),
+                                   arcos::commandPayload(Command::kRVel, 20))));
+  // A count byte above the manuals' 249 (a string argument of 250 bytes).
+  c.t += 0.02;
+  std::vector<std::uint8_t> long_payload{3, arcos::kArgString, 249};
+  long_payload.resize(3 + 249, 'x');
+  c.send(arcos::framePacket(long_payload));
+  EXPECT_EQ(c.fw.stats().bad_commands, 2u);
+  EXPECT_EQ(c.fw.stats().commands, 0u);
+  c.run(0.5);
+  EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0);
+}
+
+TEST(ArcosFirmware, StrictWatchdogHaltsAndTheNextCommandResumesTheSetPoints) {
+  Client c("p3dx", true, strict());
+  c.handshake();
+  c.t += 0.02;
+  c.command(Command::kVel, 300);
+  c.run(2.5);  // silence: the watchdog halts the motors after 2 s
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 1u);
+  EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0);
+  c.run(1.0);
+  EXPECT_EQ(c.fw.simulator().trueVelocity().linear_mps, 0.0) << "halted while silent";
+  // "it will revive upon receipt of a client command and automatically accelerate to the
+  // last-specified speed": a PULSE is enough.
+  c.send(arcos::commandPacket(arcos::kPulse));
+  c.run(1.5, 0.5);
+  EXPECT_NEAR(c.fw.simulator().trueVelocity().linear_mps, 0.3, 0.01);
+  EXPECT_EQ(c.fw.stats().watchdog_stops, 1u);
+}
+
+TEST(ArcosFirmware, CountsCommandPacketsPerSecondAsTheyArrive) {
+  Client c;  // both modes count
+  c.handshake();
+  for (int i = 0; i < 30; ++i) {  // 30 packets 20 ms apart: 0.6 s of a 50/s flood
+    c.t += 0.02;
+    c.command(Command::kRVel, i);
+  }
+  c.run(2.0, 0.5);  // then PULSE at 2/s
+  EXPECT_EQ(c.fw.stats().peak_commands_per_s, 30u);
+  EXPECT_EQ(c.fw.commandRate().count(), 30u + 4u);
 }
 
 }  // namespace

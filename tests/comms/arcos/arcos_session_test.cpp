@@ -32,6 +32,17 @@ Bytes sipPayload() {
   return encodeStandardSip(sip);
 }
 
+// What the session sends while ticked every 10 ms over (from_s, to_s].
+std::vector<int> commandsWhileTicking(ArcosClientSession& session, double from_s, double to_s) {
+  std::vector<int> out;
+  for (int k = 1; from_s + k * 0.01 <= to_s + 1e-9; ++k) {
+    session.tick(from_s + k * 0.01);
+    for (int c : commandsOf(session.takeOutgoing()))
+      out.push_back(c);
+  }
+  return out;
+}
+
 void handshake(ArcosClientSession& session, double& t) {
   session.start(t);
   session.onPacket(packetOf({0}), t += 0.01);
@@ -40,7 +51,7 @@ void handshake(ArcosClientSession& session, double& t) {
   session.onPacket(packetOf(sipPayload()), t += 0.1);
 }
 
-TEST(ArcosClientSession, PerformsTheSyncHandshakeThenOpensEnablesAndPulses) {
+TEST(ArcosClientSession, PerformsTheSyncHandshakeThenOpensEnablesAndKeepsTheWatchdogFed) {
   ArcosClientSession session;
   double t = 0.0;
   session.start(t);
@@ -50,16 +61,20 @@ TEST(ArcosClientSession, PerformsTheSyncHandshakeThenOpensEnablesAndPulses) {
   session.onPacket(packetOf({1}), t += 0.01);
   EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{2}));  // SYNC2
   session.onPacket(packetOf(encodeSync2Reply({"MobileSim", "Pioneer", "p3dx"})), t += 0.01);
-  // OPEN, ENABLE, SONAR, PULSE
-  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{1, 4, 28, 0}));
+  // OPEN at once; ENABLE and SONAR follow one packet at a time, paced by the scheduler.
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{1}));
   EXPECT_EQ(session.state(), ArcosState::kOpening);
+  EXPECT_EQ(commandsWhileTicking(session, t, t + 0.01), (std::vector<int>{}));  // the 20 ms gap
+  EXPECT_EQ(commandsWhileTicking(session, t + 0.01, t + 0.3), (std::vector<int>{4, 28}));
+  t += 0.3;
   ASSERT_TRUE(session.identity());
   EXPECT_EQ(session.identity()->subclass, "p3dx");
   session.onPacket(packetOf(sipPayload()), t += 0.1);
   EXPECT_EQ(session.state(), ArcosState::kConnected);
   EXPECT_EQ(session.takeSips().size(), 1u);
+  // Nothing else to say: PULSE once nothing went out for keepalive_s (0.5 s).
   session.tick(t += 0.6);
-  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{0}));  // PULSE
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{0}));
 }
 
 TEST(ArcosClientSession, ResendsAnUnansweredSyncAndStartsOverAfterTooManyAttempts) {
@@ -127,8 +142,11 @@ TEST(ArcosClientSession, SendsCommandsOnlyWhileOpenAndClosesOnStop) {
   double t = 0.0;
   handshake(session, t);
   session.takeOutgoing();
-  session.sendCommand(commandPayload(Command::kVel, 100));
-  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{11}));
+  EXPECT_EQ(commandsWhileTicking(session, t, t + 0.3), (std::vector<int>{4, 28}));
+  t += 0.3;
+  session.sendCommand(commandPayload(Command::kSetO));
+  session.pump(t);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{7}));
   session.stop(t);
   EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{2}));
   EXPECT_EQ(session.state(), ArcosState::kDisconnected);

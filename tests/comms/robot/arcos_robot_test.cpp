@@ -46,7 +46,9 @@ WorldMap room() {
   return map;
 }
 
+// The virtual Pioneer in strict mode: what a real robot would drop, it drops (and counts).
 std::unique_ptr<app::ArcosFirmware> firmware(app::ArcosFirmwareConfig config = {}) {
+  config.strict = true;
   return std::make_unique<app::ArcosFirmware>(
       Simulator(room(), pioneer("p3dx"), idealSimConfig(SimConfig{})), config);
 }
@@ -210,12 +212,20 @@ TEST(ArcosRobot, DrivesTheVirtualPioneerAndItsSamplesFollow) {
   std::vector<TelemetrySample> samples;
   ASSERT_TRUE(waitFor(
       robot, samples, [&] { return robot.linkState() == LinkState::kConnected; }, 10.0));
-  robot.drive({0.3, 0.0});
-  // Beyond the 2 s watchdog: the repeated VEL/RVEL and PULSE keep it going.
+  // Asked for again at every 10 ms poll, as a host behaviour answering every sample would.
   ASSERT_TRUE(waitFor(
-      robot, samples, [&] { return !samples.empty() && samples.back().odometry_pose.x > 1.0; },
+      robot, samples,
+      [&] {
+        robot.drive({0.3, 0.0});
+        return !samples.empty() && samples.back().odometry_pose.x > 1.0;
+      },
       10.0));
+  // Beyond the 2 s watchdog: the keep-alive (the VEL and RVEL re-sent in turn) kept it going,
+  // and the strict robot lost nothing.
   EXPECT_EQ(server.stats().watchdog_stops, 0u);
+  EXPECT_EQ(server.stats().too_soon, 0u);
+  EXPECT_EQ(server.stats().bad_commands, 0u);
+  EXPECT_LE(server.stats().peak_commands_per_s, 10u);
   EXPECT_NEAR(samples.back().measured_velocity.linear_mps, 0.3, 0.01);
   EXPECT_NEAR(samples.back().odometry_pose.x, server.reportedPose().x, 0.1);
   robot.stop();
@@ -229,8 +239,9 @@ TEST(ArcosRobot, TheRobotStopsByItselfWhenPulsesStop) {
   ArcosPtyServer server(firmware());
   IoThread io;
   ArcosRobotConfig config;
-  config.session.pulse_period_s = 1000.0;  // a ground station that went silent after one VEL
-  config.command_period_s = 1000.0;
+  // A ground station that went silent after one VEL: no keep-alive at all.
+  config.session.commands.keepalive_s = 1000.0;
+  config.session.commands.refresh_s = 1000.0;
   auto opened = ArcosRobot::open(io, urlOf(server.url()), pioneer("p3dx"), config);
   ASSERT_TRUE(opened.robot) << opened.error;
   ArcosRobot& robot = *opened.robot;

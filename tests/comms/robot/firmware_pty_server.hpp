@@ -4,7 +4,8 @@
 // firmware one simulator step (dt) at a time in wall-clock time, feeds it what the ground station
 // wrote and writes its output paced like a UART (bytes_per_s, e.g. 11520 for 115200 baud 8N1).
 // It records, for checks, every odometry pose the firmware had at each step, the sonar frames it
-// emitted and the wall time at which each odometry time stamp started going out on the wire.
+// emitted and the wall time at which each odometry time stamp started going out on the wire, and
+// when each MANUAL_CONTROL arrived from the ground station (the rate on the wire).
 // Test support, not a product: no gtest in here so the bench can use it too.
 
 #include <fcntl.h>
@@ -124,6 +125,11 @@ class FirmwarePtyServer {
     return params_;
   }
   std::uint64_t droppedBytes() const { return dropped_bytes_.load(); }
+  // Seconds since the server started at which each MANUAL_CONTROL was read from the pty.
+  std::vector<double> manualControlArrivals() const {
+    const std::lock_guard lock(mutex_);
+    return manual_controls_;
+  }
 
  private:
   static std::int64_t toMs(double t_s) { return std::llround(t_s * 1000.0); }
@@ -133,7 +139,8 @@ class FirmwarePtyServer {
     const Clock::time_point start = Clock::now();
     Clock::time_point last_write = start;
     std::vector<std::uint8_t> rx(4096);
-    mavlink::FrameDecoder tap;  // decodes our own output for the records
+    mavlink::FrameDecoder tap;     // decodes our own output for the records
+    mavlink::FrameDecoder rx_tap;  // and what the ground station wrote
     std::vector<mavlink::Frame> frames;
     std::uint64_t queued_total = 0;   // bytes ever queued
     std::uint64_t written_total = 0;  // bytes ever written
@@ -153,8 +160,15 @@ class FirmwarePtyServer {
         const ssize_t n = ::read(master_, rx.data(), rx.size());
         if (n <= 0)
           break;
-        core_->receiveBytes(std::span<const std::uint8_t>(rx.data(), static_cast<std::size_t>(n)),
-                            now_s);
+        const std::span<const std::uint8_t> bytes(rx.data(), static_cast<std::size_t>(n));
+        core_->receiveBytes(bytes, now_s);
+        frames.clear();
+        rx_tap.feed(bytes, frames);
+        const std::lock_guard lock(mutex_);
+        for (const auto& f : frames) {
+          if (f.message_id == mavlink::ManualControl::kId)
+            manual_controls_.push_back(now_s);
+        }
       }
       // One step at a time so every step's pose and output can be recorded.
       while (core_->simulator().time_s() + 0.5 * dt <= now_s) {
@@ -229,6 +243,7 @@ class FirmwarePtyServer {
   Pose2 true_pose_;
   app::SafetyState safety_;
   app::ParamTable params_;
+  std::vector<double> manual_controls_;
 
   std::thread thread_;  // last: started after everything it uses exists
 };

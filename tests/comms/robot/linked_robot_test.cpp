@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -252,6 +253,41 @@ TEST(LinkedRobot, StopBrakesTheRobotAndReportsTheAcknowledgedStop) {
   ASSERT_TRUE(drain.until([&] { return drain.samples.back().time_s > settled + 0.5; }));
   for (std::size_t i = stopped_index; i < drain.samples.size(); ++i)
     EXPECT_EQ(drain.samples[i].measured_velocity.linear_mps, 0.0) << drain.samples[i].time_s;
+}
+
+// Issue 24: a behaviour calling drive() every 2 ms with a new command each time (500 changes a
+// second; before, each one was a MANUAL_CONTROL) reaches the robot as at most 20 a second, the
+// newest command each time, and the robot still stops when told.
+TEST(LinkedRobot, ADriveEveryTwoMillisecondsReachesTheRobotAsAtMostTwentyManualControlsASecond) {
+  FirmwarePtyServer server(testing::makeFirmware({}, true), {});
+  IoThread io;
+  auto robot = openRobot(io, server.url());
+  Drain drain(*robot);
+  ASSERT_TRUE(drain.until([&] { return robot->linkState() == LinkState::kConnected; }));
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed_s = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  for (int i = 0; elapsed_s() < 2.0; ++i) {
+    robot->drive({0.2, 0.01 * (i % 50)});  // a new turn rate at every call
+    std::this_thread::sleep_for(2ms);
+  }
+  robot->stop();
+  ASSERT_TRUE(drain.until([&] {
+    return !drain.samples.empty() && drain.samples.back().measured_velocity.linear_mps == 0.0;
+  })) << "the robot did not stop";
+  const std::vector<double> arrivals = server.manualControlArrivals();
+  std::size_t peak = 0;
+  for (std::size_t i = 0; i < arrivals.size(); ++i) {
+    const auto end = std::lower_bound(arrivals.begin() + static_cast<std::ptrdiff_t>(i),
+                                      arrivals.end(), arrivals[i] + 1.0);
+    peak = std::max(peak, static_cast<std::size_t>(end - arrivals.begin()) - i);
+  }
+  std::printf("MANUAL_CONTROL on the wire: %zu in %.1f s, peak %zu in 1 s\n", arrivals.size(),
+              arrivals.empty() ? 0.0 : arrivals.back() - arrivals.front(), peak);
+  EXPECT_LE(peak, 20u);
+  EXPECT_GE(peak, 15u) << "the changes did not get through";
+  EXPECT_GE(arrivals.size(), 30u);
 }
 
 TEST(LinkedRobot, MoveDistanceBehaviourIsAcknowledgedAndDrivesTheDistance) {

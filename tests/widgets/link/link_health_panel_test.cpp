@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QtTest/QTest>
@@ -34,6 +35,7 @@ TEST(LinkHealthPanel, ShowsRatesErrorsLossRttHeartbeatAndReconnects) {
   EXPECT_TRUE(panel.fieldText(QStringLiteral("linkUrl")).contains(QStringLiteral("system 1")));
   EXPECT_EQ(panel.fieldText(QStringLiteral("linkRx")), QStringLiteral("3.5 kB/s · 181 msg/s"));
   EXPECT_EQ(panel.fieldText(QStringLiteral("linkTx")), QStringLiteral("120 B/s · 12 msg/s"));
+  EXPECT_EQ(panel.fieldText(QStringLiteral("linkTxBudget")), QStringLiteral("budget unknown"));
   EXPECT_EQ(panel.fieldText(QStringLiteral("linkErrors")),
             QStringLiteral("CRC 3 · seq 7 · other 1"));
   EXPECT_EQ(panel.fieldText(QStringLiteral("linkLoss")), QStringLiteral("loss 2.2 %"));
@@ -42,6 +44,23 @@ TEST(LinkHealthPanel, ShowsRatesErrorsLossRttHeartbeatAndReconnects) {
             QStringLiteral("heartbeat 0.4 s ago"));
   EXPECT_EQ(panel.fieldText(QStringLiteral("linkReconnects")),
             QStringLiteral("4 attempts · 2 losses"));
+}
+
+TEST(LinkHealthPanel, ShowsWhatIsSentAgainstTheLinksByteBudgetAndWarnsAboveHalf) {
+  LinkHealthPanel panel;
+  LinkHealth health;
+  health.state = LinkHealthState::kConnected;
+  health.tx_bytes_per_s = 90.0;
+  health.tx_budget_bytes_per_s = 960.0;  // 9600 baud
+  panel.setHealth(health);
+  auto* budget = panel.findChild<QLabel*>(QStringLiteral("linkTxBudget"));
+  ASSERT_NE(budget, nullptr);
+  EXPECT_EQ(panel.fieldText(QStringLiteral("linkTxBudget")), QStringLiteral("9 % of 960 B/s"));
+  EXPECT_TRUE(budget->styleSheet().isEmpty());
+  health.tx_bytes_per_s = 8500.0;  // the flood of issue 24 on a 9600-baud link
+  panel.setHealth(health);
+  EXPECT_EQ(panel.fieldText(QStringLiteral("linkTxBudget")), QStringLiteral("885 % of 960 B/s"));
+  EXPECT_FALSE(budget->styleSheet().isEmpty());
 }
 
 TEST(LinkHealthPanel, MissingOrNonFiniteValuesShowAsDashesNotNumbers) {
