@@ -144,6 +144,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     if (!isZero(command) && t >= next_teleop_s) {
       sendTeleopLocked(t);
     }
+    motion->tick();
   }
 
   void onFrame(const mav::Frame& frame) {
@@ -152,10 +153,12 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     if (robot_system == 0) {
       // Lock on the first robot, as LinkSession does: a heartbeat that is not a ground station's.
       if (const auto hb = frame.as<mav::Heartbeat>();
-          hb && hb->type != static_cast<std::uint8_t>(mav::MavType::kGcs))
+          hb && hb->type != static_cast<std::uint8_t>(mav::MavType::kGcs)) {
         robot_system = frame.system_id;
-      else
+        motion->setTargetSystem(frame.system_id);
+      } else {
         return;
+      }
     }
     if (frame.system_id != robot_system)
       return;
@@ -168,6 +171,9 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
       params.onParamValue(*value, now());
       return;
     }
+    if (frame.message_id == mav::IrgsMotionReport::kId ||
+        frame.message_id == mav::IrgsBehaviourStatus::kId)
+      motion->onFrame(frame);
     assembler.onFrame(frame, now());
     if (assembler.hasReady()) {
       const std::lock_guard lock(mutex);
@@ -182,6 +188,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
       messages.reset();
     }
     moveReadyLocked();
+    motion->onLinkEvent(event);
     pushEventLocked(event);
     if ((event.kind == LinkEventKind::kLinkLost || event.kind == LinkEventKind::kClosed) &&
         !isZero(command)) {
@@ -198,7 +205,10 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
 
   // ---- any thread, mutex held ----
   void moveReadyLocked() {
-    for (TelemetrySample& s : assembler.takeReady()) {
+    std::vector<TelemetrySample> ready = assembler.takeReady();
+    if (!ready.empty())
+      motion->onSample(ready.back().time_s, ready.back().odometry_pose);
+    for (TelemetrySample& s : ready) {
       samples.push_back(std::move(s));
       if (samples.size() > std::max<std::size_t>(1, config.max_pending_samples)) {
         samples.pop_front();
@@ -249,6 +259,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
   double next_teleop_s = 0.0;
   ParamClient params;
   MessageSampler messages;
+  std::shared_ptr<LinkedMotion> motion;  // set once in open(), before any callback
 };
 
 LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, RobotProfile profile,
@@ -263,9 +274,13 @@ LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, Robo
   std::shared_ptr<State> state;
   try {
     state = std::make_shared<State>(io, profile, config);
+    state->motion = std::make_shared<LinkedMotion>(config.motion, [epoch = state->epoch] {
+      return std::chrono::duration<double>(Clock::now() - epoch).count();
+    });
   } catch (const std::invalid_argument& e) {
     return {nullptr, std::string("linked robot: ") + e.what()};
   }
+  state->motion->setTargetSystem(config.link.session.target_system);
   LinkCallbacks callbacks;
   callbacks.on_frame = [state](const mav::Frame& frame) { state->onFrame(frame); };
   callbacks.on_event = [state](const LinkEvent& event) { state->onEvent(event); };
@@ -276,6 +291,8 @@ LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, Robo
   std::unique_ptr<LinkedRobot> robot(
       new LinkedRobot(std::move(profile), url.toString(), std::move(config)));
   robot->state_ = state;
+  robot->motion_ = state->motion;
+  robot->motion_->attach(made.link.get());
   {
     const std::lock_guard lock(state->mutex);
     state->link = made.link.get();
@@ -290,6 +307,7 @@ LinkedRobot::LinkedRobot(RobotProfile profile, std::string url_text, LinkedRobot
     : profile_(std::move(profile)), url_text_(std::move(url_text)), config_(std::move(config)) {}
 
 LinkedRobot::~LinkedRobot() {
+  motion_->attach(nullptr);  // nothing more is sent through the link about to go
   // Best effort: a robot that was driving gets a zero MANUAL_CONTROL before the link goes (the
   // firmware's teleop expiry stops it anyway).
   {
@@ -354,7 +372,13 @@ std::vector<TelemetrySample> LinkedRobot::update(double /*wall_elapsed_s*/) {
   for (auto& s : state_->samples)
     out.push_back(std::move(s));
   state_->samples.clear();
+  if (!out.empty())
+    motion_->samplesDelivered(out.back().time_s);  // reports up to it may be taken now
   return out;
+}
+
+MotionControl* LinkedRobot::motionControl() {
+  return motion_.get();
 }
 
 std::vector<TelemetrySample> LinkedRobot::finish() {
