@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "app/robot/firmware_mission.hpp"
 #include "comms/robot/motion_messages.hpp"
