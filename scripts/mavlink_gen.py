@@ -50,7 +50,7 @@ MESSAGES = [
     "MISSION_REQUEST_INT", "MISSION_ITEM_INT", "MISSION_ACK", "MISSION_CLEAR_ALL",
     "MISSION_CURRENT", "MISSION_ITEM_REACHED", "IRGS_STEREO_SONAR", "IRGS_ENCODER_TICKS",
     "IRGS_CONTACT", "IRGS_BEHAVIOUR_STATUS", "IRGS_SONAR_SCAN", "IRGS_POSE_2D", "IRGS_MOUSE_COUNTS",
-    "IRGS_CASTER_ENCODERS",
+    "IRGS_CASTER_ENCODERS", "IRGS_MOTION_REPORT", "IRGS_WAYPOINTS",
 ]
 
 # Enums generated as `enum class`; MAV_CMD is restricted to the commands the project uses.
@@ -59,7 +59,8 @@ ENUMS = [
     "MAV_RESULT", "MAV_PARAM_TYPE", "MAV_FRAME", "MAV_MISSION_TYPE", "MAV_MISSION_RESULT",
     "MAV_DISTANCE_SENSOR", "MAV_SENSOR_ORIENTATION", "MAV_ESTIMATOR_TYPE", "MAV_CMD",
     "IRGS_WALL_SIDE", "IRGS_BEHAVIOUR_STATE", "IRGS_SONAR_FLAGS", "IRGS_MOUSE_STATUS",
-    "IRGS_CASTER_FLAGS",
+    "IRGS_CASTER_FLAGS", "IRGS_PRIMITIVE_KIND", "IRGS_MOTION_REPORT_KIND", "IRGS_MOTION_REASON",
+    "IRGS_MOTION_FLAGS",
 ]
 MAV_CMD_USED = [
     "MAV_CMD_NAV_WAYPOINT", "MAV_CMD_DO_SET_MODE", "MAV_CMD_COMPONENT_ARM_DISARM",
@@ -276,9 +277,10 @@ def emit_field_table(m, out):
         out.append(f"      {{\"{f.name}\", \"{f.units}\", FieldType::{FIELD_TYPES[f.wire_type]}, {offset}, {i}, "
                    f"{instance}, {extension}}},")
     out.append("  }};")
-    out.append("  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.")
-    out.append("  constexpr bool setField(std::size_t index, double value) {")
-    out.append("    switch (index) {")
+    out.append("  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.")
+    # Named so that no message field (IRGS_MOTION_REPORT.index) is shadowed.
+    out.append("  constexpr bool setField(std::size_t field_number, double value) {")
+    out.append("    switch (field_number) {")
     for n, (f, i) in enumerate(elements):
         target = f"{f.name}[{i}]" if i >= 0 else f.name
         out.append(f"      case {n}: {target} = static_cast<{f.cpp}>(value); return true;")

@@ -8,7 +8,7 @@
 
 #include "comms/mavlink/messages.hpp"
 #include "comms/robot/telemetry_messages.hpp"
-#include "core/behaviour/wall_follower.hpp"
+#include "core/motion/host_adapters.hpp"
 
 namespace irgs::app {
 
@@ -64,6 +64,7 @@ FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base) {
   base.send_caster_encoders = false;
   base.imu_period_s = 0.0;
   base.status_period_s = 5.0;
+  base.behaviour_status_period_s = 2.0;
   return base;
 }
 
@@ -79,7 +80,8 @@ FirmwareCore::FirmwareCore(Simulator simulator, FirmwareConfig config)
     throw std::invalid_argument("FirmwareConfig: timeouts must be positive");
   if (!(config_.heartbeat_period_s > 0.0) || !(config_.odometry_period_s >= 0.0) ||
       !(config_.sonar_period_s >= 0.0) || !(config_.contact_period_s >= 0.0) ||
-      !(config_.imu_period_s >= 0.0) || !(config_.status_period_s >= 0.0))
+      !(config_.imu_period_s >= 0.0) || !(config_.status_period_s >= 0.0) ||
+      !(config_.behaviour_status_period_s > 0.0))
     throw std::invalid_argument("FirmwareConfig: periods must be non-negative (heartbeat > 0)");
   if (!(config_.gyro_noise_radps >= 0.0) || !(config_.accel_noise_mps2 >= 0.0) ||
       !(config_.battery_capacity_ah > 0.0) || !(config_.battery_full_v > config_.battery_empty_v) ||
@@ -143,6 +145,8 @@ FirmwareCore::FirmwareCore(Simulator simulator, FirmwareConfig config)
     decoder_.setSigningKey(config_.signing_key, /*require_signed=*/true);
     encoder_.enableSigning(*config_.signing_key, /*link_id=*/0);
   }
+  motion_ = std::make_unique<FirmwareMotion>(profile, config_.behaviour_status_period_s);
+  motion_->setLimits(maxSpeed(), maxTurnRate());
 }
 
 template <class M>
@@ -226,8 +230,10 @@ void FirmwareCore::receive(const mav::Frame& frame, double now_s) {
     teleop_forward_ = axis(mc->x);
     teleop_yaw_cw_ = axis(mc->r);  // MAVLink r > 0 turns clockwise (right)
     last_teleop_s_ = now_s;
-    if (teleop_forward_ != 0.0 || teleop_yaw_cw_ != 0.0)
-      endBehaviour(mav::IrgsBehaviourState::kAborted);  // the operator takes over
+    if ((teleop_forward_ != 0.0 || teleop_yaw_cw_ != 0.0) && motion_->running()) {
+      motion_->cancel(motionNow());  // the operator takes over
+      flushMotion();
+    }
   } else if (auto cmd = frame.as<mav::CommandLong>()) {
     if (cmd->target_system != 0 && cmd->target_system != config_.system_id)
       return;
@@ -243,6 +249,11 @@ void FirmwareCore::receive(const mav::Frame& frame, double now_s) {
       reply.target_component = frame.component_id;
       send(reply);
     }
+  } else if (auto waypoints = frame.as<mav::IrgsWaypoints>()) {
+    if (waypoints->target_system != 0 && waypoints->target_system != config_.system_id)
+      return;
+    motion_->onWaypoints(*waypoints, motionNow(), motionPermit());
+    afterStart();
   } else if (frame.message_id == mav::ParamRequestList::kId ||
              frame.message_id == mav::ParamRequestRead::kId ||
              frame.message_id == mav::ParamSet::kId) {
@@ -271,12 +282,7 @@ void FirmwareCore::handleCommand(const mav::CommandLong& command) {
   ack.result = result(mav::MavResult::kUnsupported);
   switch (static_cast<mav::MavCmd>(command.command)) {
     case mav::MavCmd::kIrgsStop:
-      endBehaviour(mav::IrgsBehaviourState::kAborted);
-      teleop_forward_ = teleop_yaw_cw_ = 0.0;
-      last_teleop_s_.reset();
-      sim_.setCommand({});  // controlled stop: decelerate at the profile's limits
-      ack.result = result(mav::MavResult::kAccepted);
-      sendStatus(kSeverityInfo, "stop");
+      ack.result = stopCommand(command);
       break;
     case mav::MavCmd::kIrgsEmergencyStop:
       if (command.param1 >= 0.5f) {
@@ -291,16 +297,24 @@ void FirmwareCore::handleCommand(const mav::CommandLong& command) {
       break;
     case mav::MavCmd::kIrgsMoveDistance:
     case mav::MavCmd::kIrgsTurnAngle:
-      ack.result = startBehaviour(command);
-      break;
     case mav::MavCmd::kIrgsFollowWall:
-      ack.result = startWallFollow(command);
+      ack.result = *motion_->onCommand(command, motionNow(), motionPermit());
+      afterStart();
       break;
     case mav::MavCmd::kMissionStart:
       ack.result = startMission(command);
       break;
     case mav::MavCmd::kSetMessageInterval:
       ack.result = setMessageInterval(command);
+      break;
+    case mav::MavCmd::kRequestMessage:
+      // The one message worth asking for: a ground station that lost a final IRGS_MOTION_REPORT
+      // and the status after it learns how the primitive ended.
+      if (command.param1 == static_cast<float>(mav::IrgsBehaviourStatus::kId)) {
+        motion_->requestStatus(sim_.time_s());
+        flushMotion();
+        ack.result = result(mav::MavResult::kAccepted);
+      }
       break;
     default:
       break;  // anything else: MAV_RESULT_UNSUPPORTED
@@ -383,9 +397,9 @@ void FirmwareCore::applyParam(ParamId id) {
       break;
     case ParamId::kMaxSpeed:
     case ParamId::kMaxTurnRate:
-      // Read at every step (teleop, behaviours); a running behaviour slows down at once.
-      behaviour_.speed = std::min(
-          behaviour_.speed, behaviour_.kind == BehaviourKind::kTurn ? maxTurnRate() : maxSpeed());
+      // Read at every step (teleop); the primitives' defaults and caps follow, a running one
+      // slows down at once.
+      motion_->setLimits(maxSpeed(), maxTurnRate());
       break;
     case ParamId::kRatePose:
     case ParamId::kRateSonar:
@@ -501,8 +515,7 @@ void FirmwareCore::handleMission(const mav::Frame& frame, double now_s) {
   if (auto count = frame.as<mav::MissionCount>()) {
     if (!addressed(count->target_system))
       return;
-    if (behaviour_.kind == BehaviourKind::kMission &&
-        behaviour_.state == mav::IrgsBehaviourState::kRunning) {
+    if (motion_->missionRunning()) {
       mav::MissionAck ack;
       ack.target_system = sys;
       ack.target_component = comp;
@@ -525,14 +538,18 @@ void FirmwareCore::handleMission(const mav::Frame& frame, double now_s) {
   } else if (auto clear = frame.as<mav::MissionClearAll>()) {
     if (!addressed(clear->target_system))
       return;
-    if (behaviour_.kind == BehaviourKind::kMission)
-      endBehaviour(mav::IrgsBehaviourState::kAborted);
+    if (motion_->missionRunning()) {
+      motion_->cancel(motionNow());
+      flushMotion();
+    }
     sendMissionReply(mission_store_.onClearAll(*clear, sys, comp));
   }
 }
 
 void FirmwareCore::safetyStop(const std::string& reason) {
-  endBehaviour(mav::IrgsBehaviourState::kAborted);
+  motion_->abort(motion::Reason::kSafety, motionNow());
+  flushMotion();
+  motion_command_ = {};
   sim_.halt();
   sendStatus(estop_ ? kSeverityCritical : kSeverityWarning, reason);
 }
@@ -562,7 +579,7 @@ void FirmwareCore::applySafety() {
     last_teleop_s_.reset();
     safetyStop("GCS heartbeat lost: motors stopped");
   } else if (teleop_was_active_ && !s.teleop_active && s.gcs_alive && !estop_ &&
-             behaviour_.state != mav::IrgsBehaviourState::kRunning) {
+             !motion_->running()) {
     if (teleop_forward_ != 0.0 || teleop_yaw_cw_ != 0.0)
       safetyStop("teleop timeout: motors stopped");
     else
@@ -572,9 +589,8 @@ void FirmwareCore::applySafety() {
   teleop_was_active_ = s.teleop_active && s.gcs_alive;
 
   VelocityCommand command;
-  const std::optional<VelocityCommand> behaviour = behaviourCommand();
-  if (behaviour && s.gcs_alive && !estop_) {
-    command = *behaviour;
+  if (motion_->running() && s.gcs_alive && !estop_) {
+    command = motion_command_;
   } else if (s.gcs_alive && s.teleop_active && !estop_) {
     command = teleopCommand();
   }
@@ -605,14 +621,18 @@ void FirmwareCore::advance(double now_s) {
         if ((pressed >> i) & 1u)
           names += (names.empty() ? "" : ",") + bumpers[i].name;
       }
-      safetyStop("bumper " + names + ": stopped");
+      // The wheels stop at once; the running primitive sees the contact in this very step and
+      // ends (drive, segments, path: kFailed(kBumped)) or backs off (follow wall: kContact).
+      sim_.halt();
+      sendStatus(kSeverityWarning, "bumper " + names + ": stopped");
     }
     if (changed) {
       if (Stream* contact = findStream(mav::IrgsContact::kId); contact && contact->period_s > 0.0)
         contact->next_s = sample_.time_s;  // report contact changes at once
     }
-    onSampleForBehaviour(sample_);
+    motion_command_ = motion_->step(motion::motionInputOf(sample_));
     sendTelemetry(sample_);
+    flushMotion();  // the step's reports after its telemetry (docs/protocol.md section 18)
     sendMissionReply(mission_store_.poll(sample_.time_s));
   }
 }
@@ -660,11 +680,6 @@ void FirmwareCore::sendTelemetry(const TelemetrySample& sample) {
       st.next_s = t + st.period_s;
     sendStream(st.message_id, sample);
   }
-  if (behaviour_.state == mav::IrgsBehaviourState::kRunning &&
-      t + eps >= next_behaviour_status_s_) {
-    sendBehaviourStatus();
-    next_behaviour_status_s_ = t + 0.5;  // 2 Hz while running
-  }
 }
 
 void FirmwareCore::sendStream(std::uint32_t message_id, const TelemetrySample& sample) {
@@ -710,87 +725,57 @@ void FirmwareCore::sendStream(std::uint32_t message_id, const TelemetrySample& s
   }
 }
 
-// ---- Behaviours --------------------------------------------------------------------------------
+// ---- Behaviours: motion primitives (firmware_motion.hpp) ----------------------------------------
 
-// Why a behaviour cannot start now, or nothing.
-std::optional<std::uint8_t> FirmwareCore::behaviourPrecondition() const {
-  if (estop_)
-    return result(mav::MavResult::kDenied);
-  if (!safety().gcs_alive)
-    return result(mav::MavResult::kTemporarilyRejected);
-  return std::nullopt;
+motion::MotionInput FirmwareCore::motionNow() const {
+  motion::MotionInput in;
+  in.time_s = sim_.time_s();
+  in.odometry = sim_.odometryPose();
+  in.measured = sample_.measured_velocity;
+  in.bumpers = bumpers_;
+  return in;
 }
 
-void FirmwareCore::beginBehaviour(BehaviourKind kind, std::uint16_t command) {
-  endBehaviour(mav::IrgsBehaviourState::kAborted);  // a new behaviour replaces the old one
-  behaviour_ = {};
-  behaviour_.kind = kind;
-  behaviour_.command = command;
-  behaviour_.state = mav::IrgsBehaviourState::kRunning;
-  behaviour_.last_pose = sim_.odometryPose();
+MotionPermit FirmwareCore::motionPermit() const {
+  const SafetyState s = safety();
+  return {estop_, s.gcs_alive, s.forward_blocked, s.reverse_blocked};
+}
+
+void FirmwareCore::flushMotion() {
+  for (const MotionMessage& m : motion_->takeMessages())
+    std::visit([this](const auto& message) { send(message); }, m);
+}
+
+// A started primitive replaces teleop: no teleop-expiry stop while it runs.
+void FirmwareCore::afterStart() {
+  flushMotion();
+  if (!motion_->running())
+    return;
   teleop_forward_ = teleop_yaw_cw_ = 0.0;
   last_teleop_s_.reset();
-  teleop_was_active_ = false;  // the behaviour replaces teleop: no teleop-expiry stop
-  next_behaviour_status_s_ = sim_.time_s();
+  teleop_was_active_ = false;
 }
 
-std::uint8_t FirmwareCore::startBehaviour(const mav::CommandLong& command) {
-  const bool move = command.command == static_cast<std::uint16_t>(mav::MavCmd::kIrgsMoveDistance);
-  const double target = static_cast<double>(command.param1);
-  const double speed = static_cast<double>(command.param2);
-  if (!std::isfinite(target) || !std::isfinite(speed) || speed < 0.0)
+// MAV_CMD_IRGS_STOP: param7 0 stops everything (controlled stop, teleop ended); a primitive id
+// stops only that primitive, so a retried stop of an old one cannot end a newer one.
+std::uint8_t FirmwareCore::stopCommand(const mav::CommandLong& command) {
+  const float id = command.param7;
+  if (!std::isfinite(id) || id < 0.0f || id > 65535.0f || id != std::floor(id))
     return result(mav::MavResult::kDenied);
-  if (auto refused = behaviourPrecondition())
-    return *refused;
-  const SafetyState s = safety();
-  if (move && ((s.forward_blocked && target > 0.0) || (s.reverse_blocked && target < 0.0)))
-    return result(mav::MavResult::kTemporarilyRejected);
-  const double max = move ? maxSpeed() : maxTurnRate();
-  beginBehaviour(move ? BehaviourKind::kMove : BehaviourKind::kTurn, command.command);
-  behaviour_.target = target;
-  behaviour_.speed = speed > 0.0 ? std::min(speed, max) : 0.5 * max;  // default: half speed
-  return result(mav::MavResult::kAccepted);
-}
-
-// MAV_CMD_IRGS_FOLLOW_WALL: param1 distance [m], param2 side (IRGS_WALL_SIDE), param3 speed
-// [m/s] (0 = default), param4 travel limit [m] (0 = none).
-std::uint8_t FirmwareCore::startWallFollow(const mav::CommandLong& command) {
-  const double distance = static_cast<double>(command.param1);
-  const double side = static_cast<double>(command.param2);
-  const double speed = static_cast<double>(command.param3);
-  const double travel = static_cast<double>(command.param4);
-  if (!std::isfinite(distance) || !std::isfinite(speed) || !std::isfinite(travel) ||
-      distance <= 0.0 || speed < 0.0 || travel < 0.0 ||
-      (side != static_cast<double>(mav::IrgsWallSide::kLeft) &&
-       side != static_cast<double>(mav::IrgsWallSide::kRight))) {
-    sendStatus(kSeverityWarning, "FOLLOW_WALL: bad distance, side, speed or travel");
-    return result(mav::MavResult::kDenied);
+  if (id > 0.0f) {
+    motion_->stop(static_cast<std::uint16_t>(id), motionNow());
+    flushMotion();
+    if (!motion_->running())
+      motion_command_ = {};
+    return result(mav::MavResult::kAccepted);
   }
-  if (auto refused = behaviourPrecondition())
-    return *refused;
-  WallFollowConfig wc;
-  wc.distance_m = distance;
-  wc.wall_on_left = side == static_cast<double>(mav::IrgsWallSide::kLeft);
-  wc.speed_mps = std::min(speed > 0.0 ? speed : wc.speed_mps, maxSpeed());
-  wc.turn_rate_radps = std::min(wc.turn_rate_radps, maxTurnRate());
-  wc.valid_distance_m = std::max(wc.valid_distance_m, distance + wc.lost_margin_m + 0.1);
-  if (auto error = wallFollowConfigError(wc)) {
-    sendStatus(kSeverityWarning, "FOLLOW_WALL: " + *error);
-    return result(mav::MavResult::kDenied);
-  }
-  std::unique_ptr<Behaviour> follower;
-  try {
-    follower = std::make_unique<WallFollower>(sim_.profile(), wc);
-  } catch (const std::invalid_argument& e) {
-    sendStatus(kSeverityWarning, std::string("FOLLOW_WALL: ") + e.what());
-    return result(mav::MavResult::kDenied);
-  }
-  beginBehaviour(BehaviourKind::kFollowWall, command.command);
-  host_behaviour_ = std::move(follower);
-  host_command_ = {};
-  behaviour_.target = travel;
-  behaviour_.travel_limit_m = travel;
-  behaviour_.speed = wc.speed_mps;
+  motion_->cancel(motionNow());
+  flushMotion();
+  motion_command_ = {};
+  teleop_forward_ = teleop_yaw_cw_ = 0.0;
+  last_teleop_s_.reset();
+  sim_.setCommand({});  // controlled stop: decelerate at the profile's limits
+  sendStatus(kSeverityInfo, "stop");
   return result(mav::MavResult::kAccepted);
 }
 
@@ -808,189 +793,19 @@ std::uint8_t FirmwareCore::startMission(const mav::CommandLong& command) {
   if (!std::isfinite(first_param) || !std::isfinite(last_param) || first_param < 0.0 ||
       first_param >= static_cast<double>(points.size()))
     return result(mav::MavResult::kDenied);
-  if (auto refused = behaviourPrecondition())
-    return *refused;
   const auto first = static_cast<std::size_t>(first_param);
   std::size_t last = points.size() - 1;
   if (last_param > first_param && last_param < static_cast<double>(points.size()))
     last = static_cast<std::size_t>(last_param);
-  const std::vector<Vec2> part(points.begin() + static_cast<std::ptrdiff_t>(first),
-                               points.begin() + static_cast<std::ptrdiff_t>(last) + 1);
-  std::vector<MissionLeg> legs = missionLegs(sim_.odometryPose(), part);
-  beginBehaviour(BehaviourKind::kMission, command.command);
-  run_ = {};
-  run_.first = static_cast<std::uint16_t>(first);
-  run_.legs = std::move(legs);
-  for (MissionLeg& leg : run_.legs)
-    leg.last_item = static_cast<std::uint16_t>(leg.last_item + first);
-  behaviour_.speed = 0.5 * maxSpeed();
-  for (const MissionLeg& leg : run_.legs)
-    behaviour_.target += leg.segment.distance_m;
-  sendStatus(kSeverityInfo, "mission started: " + std::to_string(part.size()) + " waypoints, " +
-                                std::to_string(run_.legs.size()) + " legs");
-  startMissionLeg();
-  return result(mav::MavResult::kAccepted);
-}
-
-// Watchdog: the phase's measure (heading error or remaining distance) must shrink by `step`
-// within kMissionStall_s, else the mission fails (stuck against something the bumpers miss).
-bool FirmwareCore::missionStalled(double measure, double step) {
-  const double now = sim_.time_s();
-  if (!run_.best_measure || measure < *run_.best_measure - step) {
-    run_.best_measure = measure;
-    run_.improved_at_s = now;
-    return false;
-  }
-  if (now - run_.improved_at_s < kMissionStall_s)
-    return false;
-  sendStatus(kSeverityWarning, "mission stalled on leg " + std::to_string(run_.leg + 1) + " of " +
-                                   std::to_string(run_.legs.size()));
-  endBehaviour(mav::IrgsBehaviourState::kFailed);
-  return true;
-}
-
-void FirmwareCore::startMissionLeg() {
-  run_.driving = false;
-  run_.best_measure.reset();
-  mav::MissionCurrent current;
-  current.seq = run_.leg < run_.legs.size() ? run_.legs[run_.leg].last_item
-                                            : static_cast<std::uint16_t>(run_.reported + 1);
-  current.total = static_cast<std::uint16_t>(mission_store_.waypoints().size());
-  current.mission_id = mission_store_.missionId();
-  send(current);
-}
-
-void FirmwareCore::endBehaviour(mav::IrgsBehaviourState state) {
-  if (behaviour_.state != mav::IrgsBehaviourState::kRunning)
-    return;
-  behaviour_.state = state;
-  host_behaviour_.reset();
-  host_command_ = {};
-  sim_.setCommand({});
-  sendBehaviourStatus();
-}
-
-// FOLLOW_WALL consumes the firmware's own telemetry, one sample per step.
-void FirmwareCore::onSampleForBehaviour(const TelemetrySample& sample) {
-  if (behaviour_.kind != BehaviourKind::kFollowWall ||
-      behaviour_.state != mav::IrgsBehaviourState::kRunning || !host_behaviour_)
-    return;
-  host_command_ = host_behaviour_->onSample(sample);
-  const BehaviourStatus status = host_behaviour_->status();
-  if (const auto* follower = dynamic_cast<const WallFollower*>(host_behaviour_.get()))
-    behaviour_.progress = follower->distanceTravelled_m();
-  if (status.finished) {
-    if (status.failed && !status.message.empty())
-      sendStatus(kSeverityWarning, "FOLLOW_WALL: " + status.message);
-    endBehaviour(status.failed ? mav::IrgsBehaviourState::kFailed
-                               : mav::IrgsBehaviourState::kSucceeded);
-  } else if (behaviour_.travel_limit_m > 0.0 && behaviour_.progress >= behaviour_.travel_limit_m) {
-    endBehaviour(mav::IrgsBehaviourState::kSucceeded);
-  }
-}
-
-// Progress from odometry; the speed is shaped v = min(speed, sqrt(2 a remaining)) so the robot
-// brakes at the profile's deceleration and ends on the target instead of overshooting.
-std::optional<VelocityCommand> FirmwareCore::behaviourCommand() {
-  if (behaviour_.state != mav::IrgsBehaviourState::kRunning)
-    return std::nullopt;
-  if (behaviour_.kind == BehaviourKind::kFollowWall) {
-    VelocityCommand c = host_command_;
-    c.linear_mps = std::clamp(c.linear_mps, -maxSpeed(), maxSpeed());
-    c.angular_radps = std::clamp(c.angular_radps, -maxTurnRate(), maxTurnRate());
-    return c;
-  }
-  if (behaviour_.kind == BehaviourKind::kMission)
-    return missionCommand();
-  const bool move = behaviour_.kind == BehaviourKind::kMove;
-  const Pose2& pose = sim_.odometryPose();
-  const Pose2& last = behaviour_.last_pose;
-  if (move) {
-    behaviour_.progress +=
-        (pose.x - last.x) * std::cos(last.theta) + (pose.y - last.y) * std::sin(last.theta);
-  } else {
-    behaviour_.progress += wrapAngle(pose.theta - last.theta);
-  }
-  behaviour_.last_pose = pose;
-  const double remaining = behaviour_.target - behaviour_.progress;
-  const double tolerance = move ? 0.005 : degToRad(0.5);
-  if (std::abs(remaining) <= tolerance || remaining * behaviour_.target < 0.0) {
-    endBehaviour(mav::IrgsBehaviourState::kSucceeded);
-    return std::nullopt;
-  }
-  const MotionLimits& limits = sim_.profile().limits;
-  const double accel = move ? limits.max_accel_mps2 : limits.max_turn_accel_radps2;
-  const double magnitude = std::min(behaviour_.speed, std::sqrt(2.0 * accel * std::abs(remaining)));
-  const double signed_speed = remaining > 0.0 ? magnitude : -magnitude;
-  VelocityCommand command;
-  (move ? command.linear_mps : command.angular_radps) = signed_speed;
-  return command;
-}
-
-// The traveling algorithm (003_… section 4.3): per leg, turn on the spot to the leg's heading,
-// then drive straight to the turning point, steering at it on odometry; on arrival report the
-// leg's mission items reached. Speeds are shaped like the behaviours' to brake in time.
-std::optional<VelocityCommand> FirmwareCore::missionCommand() {
-  const Pose2& pose = sim_.odometryPose();
-  behaviour_.progress +=
-      std::hypot(pose.x - behaviour_.last_pose.x, pose.y - behaviour_.last_pose.y);
-  behaviour_.last_pose = pose;
-  const MotionLimits& limits = sim_.profile().limits;
-  while (run_.leg < run_.legs.size()) {
-    const MissionLeg& leg = run_.legs[run_.leg];
-    const Vec2 to_target = leg.segment.to - Vec2(pose.x, pose.y);
-    if (!run_.driving) {
-      // Turn toward the turning point as odometry sees it now (the planned heading when on it).
-      const double bearing = to_target.norm() > 0.05 ? std::atan2(to_target.y(), to_target.x())
-                                                     : leg.segment.heading_rad;
-      const double error = wrapAngle(bearing - pose.theta);
-      if (std::abs(error) > degToRad(0.5)) {
-        if (missionStalled(std::abs(error), degToRad(0.2)))
-          return std::nullopt;
-        const double rate = std::min(
-            0.5 * maxTurnRate(), std::sqrt(2.0 * limits.max_turn_accel_radps2 * std::abs(error)));
-        return VelocityCommand{0.0, std::copysign(std::max(rate, 0.02), error)};
-      }
-      run_.driving = true;
-      run_.best_measure.reset();
-    }
-    const Vec2 heading(std::cos(leg.segment.heading_rad), std::sin(leg.segment.heading_rad));
-    const double remaining = to_target.dot(heading);  // along the leg: negative once passed
-    if (remaining > 0.005) {
-      if (missionStalled(remaining, 0.001))
-        return std::nullopt;
-      const double v =
-          std::min(behaviour_.speed, std::sqrt(2.0 * limits.max_accel_mps2 * remaining));
-      // Steer at the turning point; near it the bearing is noisy, so hold the leg heading.
-      const double aim = to_target.norm() > 0.05 ? std::atan2(to_target.y(), to_target.x())
-                                                 : leg.segment.heading_rad;
-      const double omega =
-          std::clamp(2.0 * wrapAngle(aim - pose.theta), -0.5 * maxTurnRate(), 0.5 * maxTurnRate());
-      return VelocityCommand{std::max(v, 0.01), omega};
-    }
-    // Arrived at the turning point: the items up to this leg's last are reached.
-    for (int item = run_.reported + 1; item <= static_cast<int>(leg.last_item); ++item) {
-      mav::MissionItemReached reached;
-      reached.seq = static_cast<std::uint16_t>(item);
-      send(reached);
-    }
-    run_.reported = std::max(run_.reported, static_cast<int>(leg.last_item));
-    ++run_.leg;
-    startMissionLeg();
-  }
-  // All legs done (or none: the robot stood on the waypoints already).
-  sendStatus(kSeverityInfo, "mission complete");
-  endBehaviour(mav::IrgsBehaviourState::kSucceeded);
-  return std::nullopt;
-}
-
-void FirmwareCore::sendBehaviourStatus() {
-  mav::IrgsBehaviourStatus status;
-  status.time_boot_ms = comms::bootMs(sim_.time_s());
-  status.command = behaviour_.command;
-  status.state = static_cast<std::uint8_t>(behaviour_.state);
-  status.progress = static_cast<float>(behaviour_.progress);
-  send(status);
+  MissionRequest request;
+  request.waypoints.assign(points.begin() + static_cast<std::ptrdiff_t>(first),
+                           points.begin() + static_cast<std::ptrdiff_t>(last) + 1);
+  request.first_item = static_cast<std::uint16_t>(first);
+  request.total_items = static_cast<std::uint16_t>(points.size());
+  request.mission_id = mission_store_.missionId();
+  const std::uint8_t answer = motion_->startMission(command, request, motionNow(), motionPermit());
+  afterStart();
+  return answer;
 }
 
 // ---- Telemetry ---------------------------------------------------------------------------------
@@ -1007,8 +822,8 @@ void FirmwareCore::sendHeartbeat() {
     hb.base_mode |= static_cast<std::uint8_t>(mav::MavModeFlag::kManualInputEnabled);
   if (!estop_)
     hb.base_mode |= static_cast<std::uint8_t>(mav::MavModeFlag::kSafetyArmed);
-  const bool behaviour = behaviour_.state == mav::IrgsBehaviourState::kRunning;
-  const bool mission = behaviour && behaviour_.kind == BehaviourKind::kMission;
+  const bool behaviour = motion_->running();
+  const bool mission = motion_->missionRunning();
   if (mission)
     hb.base_mode |= static_cast<std::uint8_t>(mav::MavModeFlag::kAutoEnabled);
   hb.custom_mode = estop_ ? 4u : mission ? 3u : behaviour ? 2u : teleop ? 1u : 0u;

@@ -2,9 +2,11 @@
 // The virtual robot firmware: a core Simulator behind a MAVLink 2 interface, with the firmware
 // safety rules of docs/protocol.md ("Firmware safety rules"). Pure: no Asio, no threads, no
 // clock. The caller passes the firmware time `now_s` (seconds since boot, non-decreasing), feeds
-// received bytes and writes out the bytes takeOutput() returns. Behaviours: MOVE_DISTANCE and
-// TURN_ANGLE (closed loop on odometry), FOLLOW_WALL (core WallFollower on the firmware's own
-// telemetry) and missions (an uploaded path run as the thesis traveling algorithm). Parameters
+// received bytes and writes out the bytes takeOutput() returns. Behaviours: the robot-side motion
+// primitives (core/motion) through one MotionExecutor (firmware_motion.hpp): MOVE_DISTANCE,
+// TURN_ANGLE, FOLLOW_WALL, IRGS_WAYPOINTS and missions (an uploaded path run as the thesis
+// traveling algorithm), stepped on the firmware's own telemetry, reported in IRGS_MOTION_REPORT
+// and IRGS_BEHAVIOUR_STATUS. Parameters
 // (PARAM_*, firmware_params.hpp), per-message stream intervals (MAV_CMD_SET_MESSAGE_INTERVAL),
 // SYS_STATUS and SCALED_IMU as docs/protocol.md sections 12-14 describe.
 //
@@ -29,12 +31,12 @@
 #include <vector>
 
 #include "app/robot/firmware_mission.hpp"
+#include "app/robot/firmware_motion.hpp"
 #include "app/robot/firmware_params.hpp"
 #include "comms/mavlink/frame.hpp"
 #include "comms/mavlink/frame_decoder.hpp"
 #include "comms/mavlink/frame_encoder.hpp"
 #include "comms/mavlink/messages.hpp"
-#include "core/behaviour/behaviour.hpp"
 #include "core/robot/telemetry.hpp"
 #include "core/sim/simulator.hpp"
 
@@ -54,6 +56,8 @@ struct FirmwareConfig {
   double contact_period_s = 0.1;  // IRGS_CONTACT (also sent at once when a bumper changes)
   double imu_period_s = 0.1;      // SCALED_IMU
   double status_period_s = 1.0;   // SYS_STATUS
+  // IRGS_BEHAVIOUR_STATUS while a primitive runs (and at once on every change).
+  double behaviour_status_period_s = 0.5;
   // Streams. The defaults use ~93 % of a 115200 baud UART (docs/protocol.md, section 11);
   // the compact dialect streams are for slow links (switch ODOMETRY off there).
   bool send_odometry = true;
@@ -97,7 +101,8 @@ struct FirmwareConfig {
 // IRGS_POSE_2D at 10 Hz, IRGS_SONAR_SCAN at 5 Hz, IRGS_CONTACT at 1 Hz (and on change),
 // HEARTBEAT; no ODOMETRY, LOCAL_POSITION_NED, ATTITUDE, DISTANCE_SENSOR, encoder ticks, floor
 // sensor counts or caster encoders.
-// SYS_STATUS at 0.2 Hz, no SCALED_IMU. About 650 B/s of the 960 B/s a 9600 baud UART moves.
+// SYS_STATUS at 0.2 Hz, no SCALED_IMU, IRGS_BEHAVIOUR_STATUS at 0.5 Hz while a primitive runs.
+// About 700 B/s of the 960 B/s a 9600 baud UART moves.
 FirmwareConfig slowLinkFirmwareConfig(FirmwareConfig base = {});
 
 // Why the motors are (or are not) allowed to move, for tests and the console.
@@ -138,6 +143,7 @@ class FirmwareCore {
   void warnGroundStation(const std::string& text);
   const ParamTable& params() const { return params_; }
   const MissionStore& mission() const { return mission_store_; }
+  const FirmwareMotion& motion() const { return *motion_; }
   // The period of a streamed message [s] (0 = off), nullopt for messages that are not streams.
   std::optional<double> messagePeriod(std::uint32_t message_id) const;
   // State of charge of the virtual battery, 0..1.
@@ -153,8 +159,6 @@ class FirmwareCore {
     double period_s = 0.0;
     double next_s = 0.0;
   };
-  enum class BehaviourKind { kNone, kMove, kTurn, kFollowWall, kMission };
-
   template <class M>
   void send(const M& message);
   std::uint64_t signingTime(double t_s) const;
@@ -171,6 +175,7 @@ class FirmwareCore {
   Stream* findStream(std::uint32_t message_id);
   const Stream* findStream(std::uint32_t message_id) const;
   void applySafety();
+  // Brakes at once and aborts the running primitive (kFailed(kSafety)).
   void safetyStop(const std::string& reason);
   void sendTelemetry(const TelemetrySample& sample);
   void sendStream(std::uint32_t message_id, const TelemetrySample& sample);
@@ -191,20 +196,14 @@ class FirmwareCore {
   double maxSpeed() const;
   double maxTurnRate() const;
   VelocityCommand teleopCommand() const;
-  // Behaviours: MOVE_DISTANCE / TURN_ANGLE closed loop on odometry, FOLLOW_WALL through the
-  // core WallFollower, MISSION_START through the mission legs.
-  std::uint8_t startBehaviour(const comms::mavlink::CommandLong& command);
-  std::uint8_t startWallFollow(const comms::mavlink::CommandLong& command);
+  // Motion primitives (firmware_motion.hpp): the step input now, what the safety rules allow,
+  // the messages to send.
+  motion::MotionInput motionNow() const;
+  MotionPermit motionPermit() const;
   std::uint8_t startMission(const comms::mavlink::CommandLong& command);
-  std::optional<std::uint8_t> behaviourPrecondition() const;
-  void beginBehaviour(BehaviourKind kind, std::uint16_t command);
-  void endBehaviour(comms::mavlink::IrgsBehaviourState state);
-  std::optional<VelocityCommand> behaviourCommand();
-  std::optional<VelocityCommand> missionCommand();
-  void onSampleForBehaviour(const TelemetrySample& sample);
-  void startMissionLeg();
-  bool missionStalled(double measure, double step);
-  void sendBehaviourStatus();
+  std::uint8_t stopCommand(const comms::mavlink::CommandLong& command);
+  void afterStart();
+  void flushMotion();
 
   Simulator sim_;
   FirmwareConfig config_;
@@ -231,34 +230,10 @@ class FirmwareCore {
   std::uint64_t refused_reported_ = 0;  // refusedFrames() at the last STATUSTEXT about them
   double next_refusal_report_s_ = 0.0;
 
-  // The running (or last) behaviour.
-  struct ActiveBehaviour {
-    BehaviourKind kind = BehaviourKind::kNone;
-    std::uint16_t command = 0;  // MAV_CMD of the IRGS_BEHAVIOUR_STATUS reports; 0: none yet
-    comms::mavlink::IrgsBehaviourState state = comms::mavlink::IrgsBehaviourState::kIdle;
-    double target = 0.0;          // signed distance [m] or angle [rad]
-    double speed = 0.0;           // magnitude [m/s] or [rad/s]
-    double progress = 0.0;        // signed, same unit as target; metres for wall following/missions
-    double travel_limit_m = 0.0;  // FOLLOW_WALL: 0 = none
-    Pose2 last_pose;              // odometry pose at the previous step
-  };
-  ActiveBehaviour behaviour_;
-  double next_behaviour_status_s_ = 0.0;
-  std::unique_ptr<Behaviour> host_behaviour_;  // FOLLOW_WALL: the core behaviour
-  VelocityCommand host_command_;               // its answer to the newest sample
-
-  // The running mission: legs of the traveling algorithm, each turn-then-drive.
-  struct MissionRun {
-    std::vector<MissionLeg> legs;
-    std::size_t leg = 0;
-    bool driving = false;                // false: turning on the spot to the leg's heading
-    int reported = -1;                   // highest mission item reported reached
-    std::uint16_t first = 0;             // first mission item of the run
-    std::optional<double> best_measure;  // watchdog: best heading error / distance this phase
-    double improved_at_s = 0.0;
-  };
-  static constexpr double kMissionStall_s = 5.0;
-  MissionRun run_;
+  // Every behaviour: one MotionExecutor (a pointer: it is neither copyable nor movable) and the
+  // wheel command of its last step, held until the next.
+  std::unique_ptr<FirmwareMotion> motion_;
+  VelocityCommand motion_command_;
 
   // Telemetry schedule and sonar accumulation.
   double next_heartbeat_s_ = 0.0;

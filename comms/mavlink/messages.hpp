@@ -455,6 +455,46 @@ enum class IrgsCasterFlags : std::uint8_t {
   kResidualValid = 1,
 };
 
+enum class IrgsPrimitiveKind : std::uint8_t {
+  kTurn = 0,
+  kDrive = 1,
+  kFollowWall = 2,
+  kSegments = 3,
+  kFollowPath = 4,
+};
+
+enum class IrgsMotionReportKind : std::uint8_t {
+  kStarted = 0,
+  kRefused = 1,
+  kTurningPoint = 2,
+  kDistanceMark = 3,
+  kMode = 4,
+  kContact = 5,
+  kWallLost = 6,
+  kFrontWall = 7,
+  kDone = 8,
+  kFailed = 9,
+  kCancelled = 10,
+};
+
+enum class IrgsMotionReason : std::uint8_t {
+  kNone = 0,
+  kInvalid = 1,
+  kUnsupported = 2,
+  kBumped = 3,
+  kBlocked = 4,
+  kNoProgress = 5,
+  kSafety = 6,
+  kNoSensors = 7,
+};
+
+enum class IrgsMotionFlags : std::uint8_t {
+  kTurnAbsolute = 1,
+  kStopAtWall = 2,
+  kStopWhenLost = 4,
+  kStopAtFrontWall = 8,
+};
+
 // HEARTBEAT (minimal.xml): The heartbeat message shows that a system or component is present and
 // responding. The type and autopilot fields (along with the message component id), allow the
 // receiving system to treat further messages from this system appropriately (e.g. by laying out the
@@ -512,9 +552,9 @@ struct Heartbeat {
       {"system_status", "", FieldType::kUint8, 7, -1, false, false},
       {"mavlink_version", "", FieldType::kUint8, 8, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         type = static_cast<std::uint8_t>(value);
         return true;
@@ -652,9 +692,9 @@ struct SysStatus {
       {"onboard_control_sensors_enabled_extended", "", FieldType::kUint32, 35, -1, false, true},
       {"onboard_control_sensors_health_extended", "", FieldType::kUint32, 39, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         onboard_control_sensors_present = static_cast<std::uint32_t>(value);
         return true;
@@ -757,9 +797,9 @@ struct Statustext {
       {"id", "", FieldType::kUint16, 51, -1, false, true},
       {"chunk_seq", "", FieldType::kUint8, 53, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         severity = static_cast<std::uint8_t>(value);
         return true;
@@ -849,9 +889,9 @@ struct CommandLong {
       {"param6", "", FieldType::kFloat, 20, -1, false, false},
       {"param7", "", FieldType::kFloat, 24, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -949,9 +989,9 @@ struct CommandAck {
       {"target_system", "", FieldType::kUint8, 8, -1, false, true},
       {"target_component", "", FieldType::kUint8, 9, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         command = static_cast<std::uint16_t>(value);
         return true;
@@ -1009,9 +1049,9 @@ struct ParamRequestList {
       {"target_system", "", FieldType::kUint8, 0, -1, false, false},
       {"target_component", "", FieldType::kUint8, 1, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -1072,9 +1112,9 @@ struct ParamRequestRead {
       {"target_component", "", FieldType::kUint8, 3, -1, false, false},
       {"param_index", "", FieldType::kInt16, 0, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -1138,9 +1178,9 @@ struct ParamValue {
       {"param_count", "", FieldType::kUint16, 4, -1, false, false},
       {"param_index", "", FieldType::kUint16, 6, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         param_value = static_cast<float>(value);
         return true;
@@ -1209,9 +1249,9 @@ struct ParamSet {
       {"param_value", "", FieldType::kFloat, 0, -1, false, false},
       {"param_type", "", FieldType::kUint8, 22, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -1286,9 +1326,9 @@ struct Timesync {
       {"target_system", "", FieldType::kUint8, 16, -1, false, true},
       {"target_component", "", FieldType::kUint8, 17, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         tc1 = static_cast<std::int64_t>(value);
         return true;
@@ -1435,9 +1475,9 @@ struct ManualControl {
       {"aux5", "", FieldType::kInt16, 26, -1, false, true},
       {"aux6", "", FieldType::kInt16, 28, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target = static_cast<std::uint8_t>(value);
         return true;
@@ -1581,9 +1621,9 @@ struct DistanceSensor {
       {"quaternion", "", FieldType::kFloat, 34, 3, false, true},
       {"signal_quality", "%", FieldType::kUint8, 38, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -1715,9 +1755,9 @@ struct RawImu {
       {"id", "", FieldType::kUint8, 26, -1, true, true},
       {"temperature", "cdegC", FieldType::kInt16, 27, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -1830,9 +1870,9 @@ struct ScaledImu {
       {"zmag", "mgauss", FieldType::kInt16, 20, -1, false, false},
       {"temperature", "cdegC", FieldType::kInt16, 22, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -1924,9 +1964,9 @@ struct Attitude {
       {"pitchspeed", "rad/s", FieldType::kFloat, 20, -1, false, false},
       {"yawspeed", "rad/s", FieldType::kFloat, 24, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -2007,9 +2047,9 @@ struct WheelDistance {
       {"distance", "m", FieldType::kDouble, 120, 14, false, false},
       {"distance", "m", FieldType::kDouble, 128, 15, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -2226,9 +2266,9 @@ struct Odometry {
       {"estimator_type", "", FieldType::kUint8, 231, -1, false, true},
       {"quality", "%", FieldType::kInt8, 232, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -2471,9 +2511,9 @@ struct LocalPositionNed {
       {"vy", "m/s", FieldType::kFloat, 20, -1, false, false},
       {"vz", "m/s", FieldType::kFloat, 24, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -2537,9 +2577,9 @@ struct MissionRequestList {
       {"target_component", "", FieldType::kUint8, 1, -1, false, false},
       {"mission_type", "", FieldType::kUint8, 2, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -2607,9 +2647,9 @@ struct MissionCount {
       {"mission_type", "", FieldType::kUint8, 4, -1, false, true},
       {"opaque_id", "", FieldType::kUint32, 5, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -2672,9 +2712,9 @@ struct MissionRequestInt {
       {"seq", "", FieldType::kUint16, 0, -1, false, false},
       {"mission_type", "", FieldType::kUint8, 4, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -2789,9 +2829,9 @@ struct MissionItemInt {
       {"z", "", FieldType::kFloat, 24, -1, false, false},
       {"mission_type", "", FieldType::kUint8, 37, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -2894,9 +2934,9 @@ struct MissionAck {
       {"mission_type", "", FieldType::kUint8, 3, -1, false, true},
       {"opaque_id", "", FieldType::kUint32, 4, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -2953,9 +2993,9 @@ struct MissionClearAll {
       {"target_component", "", FieldType::kUint8, 1, -1, false, false},
       {"mission_type", "", FieldType::kUint8, 2, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         target_system = static_cast<std::uint8_t>(value);
         return true;
@@ -3041,9 +3081,9 @@ struct MissionCurrent {
       {"fence_id", "", FieldType::kUint32, 10, -1, false, true},
       {"rally_points_id", "", FieldType::kUint32, 14, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         seq = static_cast<std::uint16_t>(value);
         return true;
@@ -3098,9 +3138,9 @@ struct MissionItemReached {
   static constexpr std::array<FieldInfo, 1> kFields{{
       {"seq", "", FieldType::kUint16, 0, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         seq = static_cast<std::uint16_t>(value);
         return true;
@@ -3163,9 +3203,9 @@ struct IrgsStereoSonar {
       {"tof1", "us", FieldType::kUint32, 16, -1, false, false},
       {"tof2", "us", FieldType::kUint32, 20, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -3228,9 +3268,9 @@ struct IrgsEncoderTicks {
       {"left_ticks", "", FieldType::kInt64, 8, -1, false, false},
       {"right_ticks", "", FieldType::kInt64, 16, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -3297,9 +3337,9 @@ struct IrgsContact {
       {"proximity", "mm", FieldType::kUint16, 28, 10, false, false},
       {"proximity", "mm", FieldType::kUint16, 30, 11, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -3352,20 +3392,29 @@ struct IrgsContact {
   friend bool operator==(const IrgsContact&, const IrgsContact&) = default;
 };
 
-// IRGS_BEHAVIOUR_STATUS (irgs.xml): State of the current or last behaviour; sent at 2 Hz while one
-// runs and once on every state change.
+// IRGS_BEHAVIOUR_STATUS (irgs.xml): State of the current or last behaviour (motion primitive); sent
+// at 2 Hz while one runs (0.5 Hz on 9600-baud links), at once on every state change and on
+// MAV_CMD_REQUEST_MESSAGE. The extension fields name the primitive, so a ground station that lost
+// an IRGS_MOTION_REPORT can make up the missing final report from it.
 struct IrgsBehaviourStatus {
   static constexpr std::uint32_t kId = 48003;
   static constexpr std::string_view kName = "IRGS_BEHAVIOUR_STATUS";
   static constexpr std::uint8_t kCrcExtra = 149;
   static constexpr std::uint8_t kMinLength = 11;  // base fields only
-  static constexpr std::uint8_t kMaxLength = 11;  // with extensions
+  static constexpr std::uint8_t kMaxLength = 18;  // with extensions
 
   std::uint32_t time_boot_ms = 0;  // [ms] Time since robot boot.
   // (MAV_CMD) The MAV_CMD_IRGS_* command that started the behaviour (0 if none).
   std::uint16_t command = 0;
   std::uint8_t state = 0;  // (IRGS_BEHAVIOUR_STATE) Behaviour state.
   float progress = 0;      // [m] Distance (m) or angle (rad) done so far, signed like the command.
+  std::uint16_t id = 0;    // (extension) Id of the current or last motion primitive (0 if none).
+  // (extension) Segments / follow path: the last waypoint reached (-1 none yet).
+  std::int16_t index = 0;
+  std::uint8_t kind = 0;  // (IRGS_PRIMITIVE_KIND) (extension) Kind of the primitive.
+  // (IRGS_MOTION_REPORT_KIND) (extension) Its last report (the final one once it ended).
+  std::uint8_t report = 0;
+  std::uint8_t reason = 0;  // (IRGS_MOTION_REASON) (extension) Reason of that report.
 
   // Writes all kMaxLength bytes (untrimmed); the frame encoder trims trailing zeros.
   void pack(std::span<std::uint8_t, kMaxLength> out) const {
@@ -3373,6 +3422,11 @@ struct IrgsBehaviourStatus {
     wire::put(out.data() + 4, progress);
     wire::put(out.data() + 8, command);
     wire::put(out.data() + 10, state);
+    wire::put(out.data() + 11, id);
+    wire::put(out.data() + 13, index);
+    wire::put(out.data() + 15, kind);
+    wire::put(out.data() + 16, report);
+    wire::put(out.data() + 17, reason);
   }
   // Bytes beyond payload.size() read as zero (MAVLink 2 re-extension of trimmed payloads).
   static IrgsBehaviourStatus unpack(std::span<const std::uint8_t> payload) {
@@ -3381,20 +3435,30 @@ struct IrgsBehaviourStatus {
     wire::get(payload, 4, m.progress);
     wire::get(payload, 8, m.command);
     wire::get(payload, 10, m.state);
+    wire::get(payload, 11, m.id);
+    wire::get(payload, 13, m.index);
+    wire::get(payload, 15, m.kind);
+    wire::get(payload, 16, m.report);
+    wire::get(payload, 17, m.reason);
     return m;
   }
   // Every numeric value (arrays element by element; char text left out), in declaration
   // order, with its byte offset in the wire-order payload: readField() reads a decoded
   // frame's payload through it, setField() fills this struct by table index.
-  static constexpr std::array<FieldInfo, 4> kFields{{
+  static constexpr std::array<FieldInfo, 9> kFields{{
       {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
       {"command", "", FieldType::kUint16, 8, -1, false, false},
       {"state", "", FieldType::kUint8, 10, -1, false, false},
       {"progress", "m", FieldType::kFloat, 4, -1, false, false},
+      {"id", "", FieldType::kUint16, 11, -1, false, true},
+      {"index", "", FieldType::kInt16, 13, -1, false, true},
+      {"kind", "", FieldType::kUint8, 15, -1, false, true},
+      {"report", "", FieldType::kUint8, 16, -1, false, true},
+      {"reason", "", FieldType::kUint8, 17, -1, false, true},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -3406,6 +3470,21 @@ struct IrgsBehaviourStatus {
         return true;
       case 3:
         progress = static_cast<float>(value);
+        return true;
+      case 4:
+        id = static_cast<std::uint16_t>(value);
+        return true;
+      case 5:
+        index = static_cast<std::int16_t>(value);
+        return true;
+      case 6:
+        kind = static_cast<std::uint8_t>(value);
+        return true;
+      case 7:
+        report = static_cast<std::uint8_t>(value);
+        return true;
+      case 8:
+        reason = static_cast<std::uint8_t>(value);
         return true;
       default:
         return false;
@@ -3466,9 +3545,9 @@ struct IrgsSonarScan {
       {"range", "mm", FieldType::kUint16, 26, 10, false, false},
       {"range", "mm", FieldType::kUint16, 28, 11, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -3569,9 +3648,9 @@ struct IrgsPose2d {
       {"v", "m/s", FieldType::kFloat, 16, -1, false, false},
       {"omega", "rad/s", FieldType::kFloat, 20, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_boot_ms = static_cast<std::uint32_t>(value);
         return true;
@@ -3652,9 +3731,9 @@ struct IrgsMouseCounts {
       {"right_status", "", FieldType::kUint8, 24, -1, false, false},
       {"left_status", "", FieldType::kUint8, 25, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -3742,9 +3821,9 @@ struct IrgsCasterEncoders {
       {"residual_periods", "", FieldType::kUint32, 40, -1, false, false},
       {"flags", "", FieldType::kUint8, 44, -1, false, false},
   }};
-  // Sets kFields[index] to `value` (converted to the field's type); false when out of range.
-  constexpr bool setField(std::size_t index, double value) {
-    switch (index) {
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
       case 0:
         time_usec = static_cast<std::uint64_t>(value);
         return true;
@@ -3782,8 +3861,481 @@ struct IrgsCasterEncoders {
   friend bool operator==(const IrgsCasterEncoders&, const IrgsCasterEncoders&) = default;
 };
 
+// IRGS_MOTION_REPORT (irgs.xml): One report of a motion primitive (core/motion/primitive.hpp,
+// MotionReport), sent at once when the robot makes it, after the telemetry of the same control
+// step. Pose: the odometry pose at that step (our frame: x forward at start, y left, theta
+// counter-clockwise).
+struct IrgsMotionReport {
+  static constexpr std::uint32_t kId = 48008;
+  static constexpr std::string_view kName = "IRGS_MOTION_REPORT";
+  static constexpr std::uint8_t kCrcExtra = 219;
+  static constexpr std::uint8_t kMinLength = 26;  // base fields only
+  static constexpr std::uint8_t kMaxLength = 26;  // with extensions
+
+  std::uint32_t time_boot_ms = 0;  // [ms] Time of the control step since robot boot.
+  float x = 0;                     // [m] Odometry x.
+  float y = 0;                     // [m] Odometry y.
+  float theta = 0;                 // [rad] Odometry heading, counter-clockwise from +x.
+  float distance = 0;       // [m] Path driven by this primitive so far (turns: angle turned, rad).
+  std::uint16_t id = 0;     // The primitive's id.
+  std::int16_t index = 0;   // Waypoint (TURNING_POINT), follower mode (MODE); -1 otherwise.
+  std::uint8_t kind = 0;    // (IRGS_MOTION_REPORT_KIND) What happened.
+  std::uint8_t reason = 0;  // (IRGS_MOTION_REASON) Why (REFUSED, FAILED).
+
+  // Writes all kMaxLength bytes (untrimmed); the frame encoder trims trailing zeros.
+  void pack(std::span<std::uint8_t, kMaxLength> out) const {
+    wire::put(out.data() + 0, time_boot_ms);
+    wire::put(out.data() + 4, x);
+    wire::put(out.data() + 8, y);
+    wire::put(out.data() + 12, theta);
+    wire::put(out.data() + 16, distance);
+    wire::put(out.data() + 20, id);
+    wire::put(out.data() + 22, index);
+    wire::put(out.data() + 24, kind);
+    wire::put(out.data() + 25, reason);
+  }
+  // Bytes beyond payload.size() read as zero (MAVLink 2 re-extension of trimmed payloads).
+  static IrgsMotionReport unpack(std::span<const std::uint8_t> payload) {
+    IrgsMotionReport m;
+    wire::get(payload, 0, m.time_boot_ms);
+    wire::get(payload, 4, m.x);
+    wire::get(payload, 8, m.y);
+    wire::get(payload, 12, m.theta);
+    wire::get(payload, 16, m.distance);
+    wire::get(payload, 20, m.id);
+    wire::get(payload, 22, m.index);
+    wire::get(payload, 24, m.kind);
+    wire::get(payload, 25, m.reason);
+    return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 9> kFields{{
+      {"time_boot_ms", "ms", FieldType::kUint32, 0, -1, false, false},
+      {"x", "m", FieldType::kFloat, 4, -1, false, false},
+      {"y", "m", FieldType::kFloat, 8, -1, false, false},
+      {"theta", "rad", FieldType::kFloat, 12, -1, false, false},
+      {"distance", "m", FieldType::kFloat, 16, -1, false, false},
+      {"id", "", FieldType::kUint16, 20, -1, false, false},
+      {"index", "", FieldType::kInt16, 22, -1, false, false},
+      {"kind", "", FieldType::kUint8, 24, -1, false, false},
+      {"reason", "", FieldType::kUint8, 25, -1, false, false},
+  }};
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
+      case 0:
+        time_boot_ms = static_cast<std::uint32_t>(value);
+        return true;
+      case 1:
+        x = static_cast<float>(value);
+        return true;
+      case 2:
+        y = static_cast<float>(value);
+        return true;
+      case 3:
+        theta = static_cast<float>(value);
+        return true;
+      case 4:
+        distance = static_cast<float>(value);
+        return true;
+      case 5:
+        id = static_cast<std::uint16_t>(value);
+        return true;
+      case 6:
+        index = static_cast<std::int16_t>(value);
+        return true;
+      case 7:
+        kind = static_cast<std::uint8_t>(value);
+        return true;
+      case 8:
+        reason = static_cast<std::uint8_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
+  friend bool operator==(const IrgsMotionReport&, const IrgsMotionReport&) = default;
+};
+
+// IRGS_WAYPOINTS (irgs.xml): Start a SEGMENTS or FOLLOW_PATH primitive through up to 32 waypoints
+// in the robot's odometry frame (FLU: x forward at start, y left), in one frame: the ground station
+// resends it until a report or status with its id arrives (a repeated id is not started again).
+// Points are centimetres relative to an origin, so 32 of them fit one frame; the list is the last
+// field, so a short list costs only its own bytes.
+struct IrgsWaypoints {
+  static constexpr std::uint32_t kId = 48009;
+  static constexpr std::string_view kName = "IRGS_WAYPOINTS";
+  static constexpr std::uint8_t kCrcExtra = 37;
+  static constexpr std::uint8_t kMinLength = 27;   // base fields only
+  static constexpr std::uint8_t kMaxLength = 155;  // with extensions
+
+  float origin_x = 0;  // [m] Odometry x the points are relative to.
+  float origin_y = 0;  // [m] Odometry y the points are relative to.
+  float speed = 0;     // [m/s] Speed; 0 = robot default.
+  float quantum = 0;   // [rad] SEGMENTS: turns rounded to multiples of this; 0 = exact.
+  // [m] SEGMENTS with STOP_AT_WALL: stop distance ahead of the body origin; 0 = robot default.
+  float clearance = 0;
+  std::uint16_t id = 0;               // Primitive id (1-65535), echoed in the reports.
+  std::uint8_t target_system = 0;     // System ID.
+  std::uint8_t target_component = 0;  // Component ID.
+  std::uint8_t kind = 0;              // (IRGS_PRIMITIVE_KIND) SEGMENTS or FOLLOW_PATH.
+  std::uint8_t count = 0;             // Number of waypoints (1-32).
+  std::uint8_t flags = 0;             // (IRGS_MOTION_FLAGS) STOP_AT_WALL (segments).
+  // [cm] (extension) Waypoints x0, y0, x1, y1, ... relative to the origin; entries beyond 2 count
+  // are 0.
+  std::array<std::int16_t, 64> points{};
+
+  // Writes all kMaxLength bytes (untrimmed); the frame encoder trims trailing zeros.
+  void pack(std::span<std::uint8_t, kMaxLength> out) const {
+    wire::put(out.data() + 0, origin_x);
+    wire::put(out.data() + 4, origin_y);
+    wire::put(out.data() + 8, speed);
+    wire::put(out.data() + 12, quantum);
+    wire::put(out.data() + 16, clearance);
+    wire::put(out.data() + 20, id);
+    wire::put(out.data() + 22, target_system);
+    wire::put(out.data() + 23, target_component);
+    wire::put(out.data() + 24, kind);
+    wire::put(out.data() + 25, count);
+    wire::put(out.data() + 26, flags);
+    wire::putArray(out.data() + 27, points);
+  }
+  // Bytes beyond payload.size() read as zero (MAVLink 2 re-extension of trimmed payloads).
+  static IrgsWaypoints unpack(std::span<const std::uint8_t> payload) {
+    IrgsWaypoints m;
+    wire::get(payload, 0, m.origin_x);
+    wire::get(payload, 4, m.origin_y);
+    wire::get(payload, 8, m.speed);
+    wire::get(payload, 12, m.quantum);
+    wire::get(payload, 16, m.clearance);
+    wire::get(payload, 20, m.id);
+    wire::get(payload, 22, m.target_system);
+    wire::get(payload, 23, m.target_component);
+    wire::get(payload, 24, m.kind);
+    wire::get(payload, 25, m.count);
+    wire::get(payload, 26, m.flags);
+    wire::getArray(payload, 27, m.points);
+    return m;
+  }
+  // Every numeric value (arrays element by element; char text left out), in declaration
+  // order, with its byte offset in the wire-order payload: readField() reads a decoded
+  // frame's payload through it, setField() fills this struct by table index.
+  static constexpr std::array<FieldInfo, 75> kFields{{
+      {"origin_x", "m", FieldType::kFloat, 0, -1, false, false},
+      {"origin_y", "m", FieldType::kFloat, 4, -1, false, false},
+      {"speed", "m/s", FieldType::kFloat, 8, -1, false, false},
+      {"quantum", "rad", FieldType::kFloat, 12, -1, false, false},
+      {"clearance", "m", FieldType::kFloat, 16, -1, false, false},
+      {"id", "", FieldType::kUint16, 20, -1, false, false},
+      {"target_system", "", FieldType::kUint8, 22, -1, false, false},
+      {"target_component", "", FieldType::kUint8, 23, -1, false, false},
+      {"kind", "", FieldType::kUint8, 24, -1, false, false},
+      {"count", "", FieldType::kUint8, 25, -1, false, false},
+      {"flags", "", FieldType::kUint8, 26, -1, false, false},
+      {"points", "cm", FieldType::kInt16, 27, 0, false, true},
+      {"points", "cm", FieldType::kInt16, 29, 1, false, true},
+      {"points", "cm", FieldType::kInt16, 31, 2, false, true},
+      {"points", "cm", FieldType::kInt16, 33, 3, false, true},
+      {"points", "cm", FieldType::kInt16, 35, 4, false, true},
+      {"points", "cm", FieldType::kInt16, 37, 5, false, true},
+      {"points", "cm", FieldType::kInt16, 39, 6, false, true},
+      {"points", "cm", FieldType::kInt16, 41, 7, false, true},
+      {"points", "cm", FieldType::kInt16, 43, 8, false, true},
+      {"points", "cm", FieldType::kInt16, 45, 9, false, true},
+      {"points", "cm", FieldType::kInt16, 47, 10, false, true},
+      {"points", "cm", FieldType::kInt16, 49, 11, false, true},
+      {"points", "cm", FieldType::kInt16, 51, 12, false, true},
+      {"points", "cm", FieldType::kInt16, 53, 13, false, true},
+      {"points", "cm", FieldType::kInt16, 55, 14, false, true},
+      {"points", "cm", FieldType::kInt16, 57, 15, false, true},
+      {"points", "cm", FieldType::kInt16, 59, 16, false, true},
+      {"points", "cm", FieldType::kInt16, 61, 17, false, true},
+      {"points", "cm", FieldType::kInt16, 63, 18, false, true},
+      {"points", "cm", FieldType::kInt16, 65, 19, false, true},
+      {"points", "cm", FieldType::kInt16, 67, 20, false, true},
+      {"points", "cm", FieldType::kInt16, 69, 21, false, true},
+      {"points", "cm", FieldType::kInt16, 71, 22, false, true},
+      {"points", "cm", FieldType::kInt16, 73, 23, false, true},
+      {"points", "cm", FieldType::kInt16, 75, 24, false, true},
+      {"points", "cm", FieldType::kInt16, 77, 25, false, true},
+      {"points", "cm", FieldType::kInt16, 79, 26, false, true},
+      {"points", "cm", FieldType::kInt16, 81, 27, false, true},
+      {"points", "cm", FieldType::kInt16, 83, 28, false, true},
+      {"points", "cm", FieldType::kInt16, 85, 29, false, true},
+      {"points", "cm", FieldType::kInt16, 87, 30, false, true},
+      {"points", "cm", FieldType::kInt16, 89, 31, false, true},
+      {"points", "cm", FieldType::kInt16, 91, 32, false, true},
+      {"points", "cm", FieldType::kInt16, 93, 33, false, true},
+      {"points", "cm", FieldType::kInt16, 95, 34, false, true},
+      {"points", "cm", FieldType::kInt16, 97, 35, false, true},
+      {"points", "cm", FieldType::kInt16, 99, 36, false, true},
+      {"points", "cm", FieldType::kInt16, 101, 37, false, true},
+      {"points", "cm", FieldType::kInt16, 103, 38, false, true},
+      {"points", "cm", FieldType::kInt16, 105, 39, false, true},
+      {"points", "cm", FieldType::kInt16, 107, 40, false, true},
+      {"points", "cm", FieldType::kInt16, 109, 41, false, true},
+      {"points", "cm", FieldType::kInt16, 111, 42, false, true},
+      {"points", "cm", FieldType::kInt16, 113, 43, false, true},
+      {"points", "cm", FieldType::kInt16, 115, 44, false, true},
+      {"points", "cm", FieldType::kInt16, 117, 45, false, true},
+      {"points", "cm", FieldType::kInt16, 119, 46, false, true},
+      {"points", "cm", FieldType::kInt16, 121, 47, false, true},
+      {"points", "cm", FieldType::kInt16, 123, 48, false, true},
+      {"points", "cm", FieldType::kInt16, 125, 49, false, true},
+      {"points", "cm", FieldType::kInt16, 127, 50, false, true},
+      {"points", "cm", FieldType::kInt16, 129, 51, false, true},
+      {"points", "cm", FieldType::kInt16, 131, 52, false, true},
+      {"points", "cm", FieldType::kInt16, 133, 53, false, true},
+      {"points", "cm", FieldType::kInt16, 135, 54, false, true},
+      {"points", "cm", FieldType::kInt16, 137, 55, false, true},
+      {"points", "cm", FieldType::kInt16, 139, 56, false, true},
+      {"points", "cm", FieldType::kInt16, 141, 57, false, true},
+      {"points", "cm", FieldType::kInt16, 143, 58, false, true},
+      {"points", "cm", FieldType::kInt16, 145, 59, false, true},
+      {"points", "cm", FieldType::kInt16, 147, 60, false, true},
+      {"points", "cm", FieldType::kInt16, 149, 61, false, true},
+      {"points", "cm", FieldType::kInt16, 151, 62, false, true},
+      {"points", "cm", FieldType::kInt16, 153, 63, false, true},
+  }};
+  // Sets kFields[field_number] to `value` (converted to the field's type); false when out of range.
+  constexpr bool setField(std::size_t field_number, double value) {
+    switch (field_number) {
+      case 0:
+        origin_x = static_cast<float>(value);
+        return true;
+      case 1:
+        origin_y = static_cast<float>(value);
+        return true;
+      case 2:
+        speed = static_cast<float>(value);
+        return true;
+      case 3:
+        quantum = static_cast<float>(value);
+        return true;
+      case 4:
+        clearance = static_cast<float>(value);
+        return true;
+      case 5:
+        id = static_cast<std::uint16_t>(value);
+        return true;
+      case 6:
+        target_system = static_cast<std::uint8_t>(value);
+        return true;
+      case 7:
+        target_component = static_cast<std::uint8_t>(value);
+        return true;
+      case 8:
+        kind = static_cast<std::uint8_t>(value);
+        return true;
+      case 9:
+        count = static_cast<std::uint8_t>(value);
+        return true;
+      case 10:
+        flags = static_cast<std::uint8_t>(value);
+        return true;
+      case 11:
+        points[0] = static_cast<std::int16_t>(value);
+        return true;
+      case 12:
+        points[1] = static_cast<std::int16_t>(value);
+        return true;
+      case 13:
+        points[2] = static_cast<std::int16_t>(value);
+        return true;
+      case 14:
+        points[3] = static_cast<std::int16_t>(value);
+        return true;
+      case 15:
+        points[4] = static_cast<std::int16_t>(value);
+        return true;
+      case 16:
+        points[5] = static_cast<std::int16_t>(value);
+        return true;
+      case 17:
+        points[6] = static_cast<std::int16_t>(value);
+        return true;
+      case 18:
+        points[7] = static_cast<std::int16_t>(value);
+        return true;
+      case 19:
+        points[8] = static_cast<std::int16_t>(value);
+        return true;
+      case 20:
+        points[9] = static_cast<std::int16_t>(value);
+        return true;
+      case 21:
+        points[10] = static_cast<std::int16_t>(value);
+        return true;
+      case 22:
+        points[11] = static_cast<std::int16_t>(value);
+        return true;
+      case 23:
+        points[12] = static_cast<std::int16_t>(value);
+        return true;
+      case 24:
+        points[13] = static_cast<std::int16_t>(value);
+        return true;
+      case 25:
+        points[14] = static_cast<std::int16_t>(value);
+        return true;
+      case 26:
+        points[15] = static_cast<std::int16_t>(value);
+        return true;
+      case 27:
+        points[16] = static_cast<std::int16_t>(value);
+        return true;
+      case 28:
+        points[17] = static_cast<std::int16_t>(value);
+        return true;
+      case 29:
+        points[18] = static_cast<std::int16_t>(value);
+        return true;
+      case 30:
+        points[19] = static_cast<std::int16_t>(value);
+        return true;
+      case 31:
+        points[20] = static_cast<std::int16_t>(value);
+        return true;
+      case 32:
+        points[21] = static_cast<std::int16_t>(value);
+        return true;
+      case 33:
+        points[22] = static_cast<std::int16_t>(value);
+        return true;
+      case 34:
+        points[23] = static_cast<std::int16_t>(value);
+        return true;
+      case 35:
+        points[24] = static_cast<std::int16_t>(value);
+        return true;
+      case 36:
+        points[25] = static_cast<std::int16_t>(value);
+        return true;
+      case 37:
+        points[26] = static_cast<std::int16_t>(value);
+        return true;
+      case 38:
+        points[27] = static_cast<std::int16_t>(value);
+        return true;
+      case 39:
+        points[28] = static_cast<std::int16_t>(value);
+        return true;
+      case 40:
+        points[29] = static_cast<std::int16_t>(value);
+        return true;
+      case 41:
+        points[30] = static_cast<std::int16_t>(value);
+        return true;
+      case 42:
+        points[31] = static_cast<std::int16_t>(value);
+        return true;
+      case 43:
+        points[32] = static_cast<std::int16_t>(value);
+        return true;
+      case 44:
+        points[33] = static_cast<std::int16_t>(value);
+        return true;
+      case 45:
+        points[34] = static_cast<std::int16_t>(value);
+        return true;
+      case 46:
+        points[35] = static_cast<std::int16_t>(value);
+        return true;
+      case 47:
+        points[36] = static_cast<std::int16_t>(value);
+        return true;
+      case 48:
+        points[37] = static_cast<std::int16_t>(value);
+        return true;
+      case 49:
+        points[38] = static_cast<std::int16_t>(value);
+        return true;
+      case 50:
+        points[39] = static_cast<std::int16_t>(value);
+        return true;
+      case 51:
+        points[40] = static_cast<std::int16_t>(value);
+        return true;
+      case 52:
+        points[41] = static_cast<std::int16_t>(value);
+        return true;
+      case 53:
+        points[42] = static_cast<std::int16_t>(value);
+        return true;
+      case 54:
+        points[43] = static_cast<std::int16_t>(value);
+        return true;
+      case 55:
+        points[44] = static_cast<std::int16_t>(value);
+        return true;
+      case 56:
+        points[45] = static_cast<std::int16_t>(value);
+        return true;
+      case 57:
+        points[46] = static_cast<std::int16_t>(value);
+        return true;
+      case 58:
+        points[47] = static_cast<std::int16_t>(value);
+        return true;
+      case 59:
+        points[48] = static_cast<std::int16_t>(value);
+        return true;
+      case 60:
+        points[49] = static_cast<std::int16_t>(value);
+        return true;
+      case 61:
+        points[50] = static_cast<std::int16_t>(value);
+        return true;
+      case 62:
+        points[51] = static_cast<std::int16_t>(value);
+        return true;
+      case 63:
+        points[52] = static_cast<std::int16_t>(value);
+        return true;
+      case 64:
+        points[53] = static_cast<std::int16_t>(value);
+        return true;
+      case 65:
+        points[54] = static_cast<std::int16_t>(value);
+        return true;
+      case 66:
+        points[55] = static_cast<std::int16_t>(value);
+        return true;
+      case 67:
+        points[56] = static_cast<std::int16_t>(value);
+        return true;
+      case 68:
+        points[57] = static_cast<std::int16_t>(value);
+        return true;
+      case 69:
+        points[58] = static_cast<std::int16_t>(value);
+        return true;
+      case 70:
+        points[59] = static_cast<std::int16_t>(value);
+        return true;
+      case 71:
+        points[60] = static_cast<std::int16_t>(value);
+        return true;
+      case 72:
+        points[61] = static_cast<std::int16_t>(value);
+        return true;
+      case 73:
+        points[62] = static_cast<std::int16_t>(value);
+        return true;
+      case 74:
+        points[63] = static_cast<std::int16_t>(value);
+        return true;
+      default:
+        return false;
+    }
+  }
+  friend bool operator==(const IrgsWaypoints&, const IrgsWaypoints&) = default;
+};
+
 // Every generated message, sorted by id (findMessageInfo searches it).
-inline constexpr std::array<MessageInfo, 34> kGeneratedMessages{{
+inline constexpr std::array<MessageInfo, 36> kGeneratedMessages{{
     messageInfoOf<Heartbeat>(),          messageInfoOf<SysStatus>(),
     messageInfoOf<ParamRequestRead>(),   messageInfoOf<ParamRequestList>(),
     messageInfoOf<ParamValue>(),         messageInfoOf<ParamSet>(),
@@ -3801,10 +4353,11 @@ inline constexpr std::array<MessageInfo, 34> kGeneratedMessages{{
     messageInfoOf<IrgsContact>(),        messageInfoOf<IrgsBehaviourStatus>(),
     messageInfoOf<IrgsSonarScan>(),      messageInfoOf<IrgsPose2d>(),
     messageInfoOf<IrgsMouseCounts>(),    messageInfoOf<IrgsCasterEncoders>(),
+    messageInfoOf<IrgsMotionReport>(),   messageInfoOf<IrgsWaypoints>(),
 }};
 
 // Every generated message's field table, sorted by id (findMessageFields searches it).
-inline constexpr std::array<MessageFields, 34> kGeneratedMessageFields{{
+inline constexpr std::array<MessageFields, 36> kGeneratedMessageFields{{
     messageFieldsOf<Heartbeat>(),          messageFieldsOf<SysStatus>(),
     messageFieldsOf<ParamRequestRead>(),   messageFieldsOf<ParamRequestList>(),
     messageFieldsOf<ParamValue>(),         messageFieldsOf<ParamSet>(),
@@ -3822,6 +4375,7 @@ inline constexpr std::array<MessageFields, 34> kGeneratedMessageFields{{
     messageFieldsOf<IrgsContact>(),        messageFieldsOf<IrgsBehaviourStatus>(),
     messageFieldsOf<IrgsSonarScan>(),      messageFieldsOf<IrgsPose2d>(),
     messageFieldsOf<IrgsMouseCounts>(),    messageFieldsOf<IrgsCasterEncoders>(),
+    messageFieldsOf<IrgsMotionReport>(),   messageFieldsOf<IrgsWaypoints>(),
 }};
 
 // Every generated message type, for code that handles all of them (tests, dispatch).
@@ -3832,6 +4386,6 @@ using GeneratedMessageTypes =
                MissionRequestList, MissionCount, MissionRequestInt, MissionItemInt, MissionAck,
                MissionClearAll, MissionCurrent, MissionItemReached, IrgsStereoSonar,
                IrgsEncoderTicks, IrgsContact, IrgsBehaviourStatus, IrgsSonarScan, IrgsPose2d,
-               IrgsMouseCounts, IrgsCasterEncoders>;
+               IrgsMouseCounts, IrgsCasterEncoders, IrgsMotionReport, IrgsWaypoints>;
 
 }  // namespace irgs::comms::mavlink

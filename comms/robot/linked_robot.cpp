@@ -145,6 +145,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     params.tick(t);
     flushParamsLocked();
     pumpTeleopLocked(t);  // a change held back by the interval, or the 10 Hz repeat
+    motion->tick();
   }
 
   void onFrame(const mav::Frame& frame) {
@@ -153,10 +154,12 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
     if (robot_system == 0) {
       // Lock on the first robot, as LinkSession does: a heartbeat that is not a ground station's.
       if (const auto hb = frame.as<mav::Heartbeat>();
-          hb && hb->type != static_cast<std::uint8_t>(mav::MavType::kGcs))
+          hb && hb->type != static_cast<std::uint8_t>(mav::MavType::kGcs)) {
         robot_system = frame.system_id;
-      else
+        motion->setTargetSystem(frame.system_id);
+      } else {
         return;
+      }
     }
     if (frame.system_id != robot_system)
       return;
@@ -169,6 +172,9 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
       params.onParamValue(*value, now());
       return;
     }
+    if (frame.message_id == mav::IrgsMotionReport::kId ||
+        frame.message_id == mav::IrgsBehaviourStatus::kId)
+      motion->onFrame(frame);
     assembler.onFrame(frame, now());
     if (assembler.hasReady()) {
       const std::lock_guard lock(mutex);
@@ -183,6 +189,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
       messages.reset();
     }
     moveReadyLocked();
+    motion->onLinkEvent(event);
     pushEventLocked(event);
     if ((event.kind == LinkEventKind::kLinkLost || event.kind == LinkEventKind::kClosed) &&
         !isZero(command)) {
@@ -200,7 +207,10 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
 
   // ---- any thread, mutex held ----
   void moveReadyLocked() {
-    for (TelemetrySample& s : assembler.takeReady()) {
+    std::vector<TelemetrySample> ready = assembler.takeReady();
+    if (!ready.empty())
+      motion->onSample(ready.back().time_s, ready.back().odometry_pose);
+    for (TelemetrySample& s : ready) {
       samples.push_back(std::move(s));
       if (samples.size() > std::max<std::size_t>(1, config.max_pending_samples)) {
         samples.pop_front();
@@ -263,6 +273,7 @@ struct LinkedRobot::State : std::enable_shared_from_this<LinkedRobot::State> {
   TeleopPacer pacer;
   ParamClient params;
   MessageSampler messages;
+  std::shared_ptr<LinkedMotion> motion;  // set once in open(), before any callback
 };
 
 LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, RobotProfile profile,
@@ -280,9 +291,13 @@ LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, Robo
   std::shared_ptr<State> state;
   try {
     state = std::make_shared<State>(io, profile, config);
+    state->motion = std::make_shared<LinkedMotion>(config.motion, [epoch = state->epoch] {
+      return std::chrono::duration<double>(Clock::now() - epoch).count();
+    });
   } catch (const std::invalid_argument& e) {
     return {nullptr, std::string("linked robot: ") + e.what()};
   }
+  state->motion->setTargetSystem(config.link.session.target_system);
   LinkCallbacks callbacks;
   callbacks.on_frame = [state](const mav::Frame& frame) { state->onFrame(frame); };
   callbacks.on_event = [state](const LinkEvent& event) { state->onEvent(event); };
@@ -295,6 +310,8 @@ LinkedRobot::OpenResult LinkedRobot::open(IoThread& io, const LinkUrl& url, Robo
   if (const auto baud = linkBaud(url))
     robot->tx_budget_bytes_per_s_ = *baud / 10.0;  // a UART's 10 bits per byte
   robot->state_ = state;
+  robot->motion_ = state->motion;
+  robot->motion_->attach(made.link.get());
   {
     const std::lock_guard lock(state->mutex);
     state->link = made.link.get();
@@ -309,6 +326,7 @@ LinkedRobot::LinkedRobot(RobotProfile profile, std::string url_text, LinkedRobot
     : profile_(std::move(profile)), url_text_(std::move(url_text)), config_(std::move(config)) {}
 
 LinkedRobot::~LinkedRobot() {
+  motion_->attach(nullptr);  // nothing more is sent through the link about to go
   // Best effort: a robot that was driving gets a zero MANUAL_CONTROL before the link goes (the
   // firmware's teleop expiry stops it anyway).
   {
@@ -368,7 +386,13 @@ std::vector<TelemetrySample> LinkedRobot::update(double /*wall_elapsed_s*/) {
   for (auto& s : state_->samples)
     out.push_back(std::move(s));
   state_->samples.clear();
+  if (!out.empty())
+    motion_->samplesDelivered(out.back().time_s);  // reports up to it may be taken now
   return out;
+}
+
+MotionControl* LinkedRobot::motionControl() {
+  return motion_.get();
 }
 
 std::vector<TelemetrySample> LinkedRobot::finish() {

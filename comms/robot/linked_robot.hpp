@@ -35,6 +35,7 @@
 #include "comms/link/link.hpp"
 #include "comms/link/link_url.hpp"
 #include "comms/mavlink/messages.hpp"
+#include "comms/robot/linked_motion.hpp"
 #include "comms/robot/message_sampler.hpp"
 #include "comms/robot/param_client.hpp"
 #include "comms/robot/telemetry_assembler.hpp"
@@ -56,6 +57,8 @@ struct LinkedRobotConfig {
   std::size_t max_pending_events = 1000;
   // Decoded messages for takeMessages() (the GUI's plots): off unless max_rate_hz > 0.
   MessageSamplerConfig messages{};
+  // Motion primitives run on the firmware (motionControl(), mavlink_motion_client.hpp).
+  MotionClientConfig motion{};
 };
 
 // What a behaviour command asks of the firmware (dialect COMMAND_LONG ids 48100-48104).
@@ -101,6 +104,8 @@ class LinkedRobot final : public Robot {
   std::vector<TelemetrySample> update(double wall_elapsed_s) override;
   // Closes the link and releases the sample the assembler still holds (and late readings).
   std::vector<TelemetrySample> finish() override;
+  // The firmware runs every primitive kind (docs/protocol.md section 18).
+  MotionControl* motionControl() override;
 
   // Link-specific, for the link-health panel, the console and irgs-sim.
   LinkState linkState() const;
@@ -135,6 +140,7 @@ class LinkedRobot final : public Robot {
   std::string url_text_;
   LinkedRobotConfig config_;
   std::shared_ptr<State> state_;
+  std::shared_ptr<LinkedMotion> motion_;
   std::unique_ptr<Link> link_;
   std::optional<double> tx_budget_bytes_per_s_;  // from the URL's baud (LinkStats)
 };

@@ -139,9 +139,27 @@ inline FirmwareCore makeCore(WorldMap map, FirmwareConfig config = {}) {
   return FirmwareCore(Simulator(std::move(map), thesisRobot(), idealSimConfig(sim)), config);
 }
 
+// The thesis robot without bumpers: only the sonars and the watchdogs can tell it is blocked.
+inline FirmwareCore makeBumperlessCore(WorldMap map) {
+  RobotProfile profile = thesisRobot();
+  profile.bumpers.clear();
+  SimConfig sim;
+  sim.seed = 7;
+  return FirmwareCore(Simulator(std::move(map), profile, idealSimConfig(sim)));
+}
+
 inline bool stopped(const FirmwareCore& core) {
   const auto v = core.simulator().trueVelocity();
   return v.linear_mps == 0.0 && v.angular_radps == 0.0;
+}
+
+// The COMMAND_ACKs of one command, in order.
+inline std::vector<mav::CommandAck> acksFor(const Gcs& gcs, mav::MavCmd command) {
+  std::vector<mav::CommandAck> out;
+  for (const auto& a : gcs.all<mav::CommandAck>())
+    if (a.command == static_cast<std::uint16_t>(command))
+      out.push_back(a);
+  return out;
 }
 
 inline std::vector<std::uint8_t> behaviourStates(const Gcs& gcs) {

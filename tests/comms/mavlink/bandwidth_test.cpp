@@ -52,6 +52,29 @@ IrgsContact contact() {
   return c;
 }
 
+IrgsBehaviourStatus behaviourStatus() {
+  IrgsBehaviourStatus s{123456, 48102, 1, 2.4f};
+  s.id = 17;
+  s.index = -1;
+  s.kind = static_cast<std::uint8_t>(IrgsPrimitiveKind::kFollowWall);
+  s.report = static_cast<std::uint8_t>(IrgsMotionReportKind::kDistanceMark);
+  s.reason = static_cast<std::uint8_t>(IrgsMotionReason::kNone);
+  return s;
+}
+
+IrgsMotionReport motionReport() {
+  IrgsMotionReport r;
+  r.time_boot_ms = 123456;
+  r.x = 1.25f;
+  r.y = -0.5f;
+  r.theta = 0.7f;
+  r.distance = 2.5f;
+  r.id = 17;
+  r.index = 3;
+  r.kind = static_cast<std::uint8_t>(IrgsMotionReportKind::kTurningPoint);
+  return r;
+}
+
 TEST(MavlinkBandwidth, NineSixHundredProfileFitsThreeQuartersOfTheLink) {
   Budget b;
   b.add(heartbeat(), 1.0);
@@ -65,14 +88,48 @@ TEST(MavlinkBandwidth, NineSixHundredProfileFitsThreeQuartersOfTheLink) {
   scan.range.fill(1234);
   b.add(scan, 5.0);
   b.add(contact(), 1.0);
-  IrgsBehaviourStatus status{123456, 48100, 1, 0.4f};
-  b.add(status, 2.0);
+  // While a motion primitive runs: its status every 2 s (the compact profile's rate) and about
+  // one report a second (turning points, distance marks, mode changes).
+  b.add(behaviourStatus(), 0.5);
+  b.add(motionReport(), 1.0);
   Statustext text;
   setString(text.text, "bumper 2 pressed: stopped");
   b.add(text, 0.1);
   RecordProperty("bytes_per_second", static_cast<int>(std::lround(b.bytes_per_second)));
   EXPECT_LT(b.bytes_per_second, kBudget * kBytesPerSecond9600);
-  EXPECT_NEAR(b.bytes_per_second, 704.0, 25.0);  // the figure quoted in docs/protocol.md
+  EXPECT_NEAR(b.bytes_per_second, 706.0, 25.0);  // the figure quoted in docs/protocol.md
+}
+
+// docs/protocol.md section 5: the ground station's side at 9600 baud with a primitive started
+// every two seconds, the largest (32 waypoints) at that.
+TEST(MavlinkBandwidth, GroundStationSideFitsWithAWaypointListEveryTwoSeconds) {
+  Budget b;
+  b.add(heartbeat(), 1.0);
+  ManualControl mc;
+  mc.target = 1;
+  mc.x = 500;
+  mc.r = -200;
+  b.add(mc, 10.0);
+  Timesync sync;
+  sync.ts1 = 123456789;
+  sync.target_system = 1;
+  b.add(sync, 1.0);
+  IrgsWaypoints w;
+  w.origin_x = 1.5f;
+  w.origin_y = -2.0f;
+  w.speed = 0.2f;
+  w.id = 12;
+  w.target_system = 1;
+  w.kind = static_cast<std::uint8_t>(IrgsPrimitiveKind::kSegments);
+  w.count = 32;
+  w.flags = static_cast<std::uint8_t>(IrgsMotionFlags::kStopAtWall);
+  for (std::size_t i = 0; i < w.points.size(); ++i)
+    w.points[i] = static_cast<std::int16_t>(25 * (i + 1));
+  EXPECT_EQ(FrameEncoder(255, 190).encode(w).size, 167u);  // 174 ms at 9600 baud
+  b.add(w, 0.5);
+  RecordProperty("bytes_per_second", static_cast<int>(std::lround(b.bytes_per_second)));
+  EXPECT_LT(b.bytes_per_second, kBudget * kBytesPerSecond9600);
+  EXPECT_NEAR(b.bytes_per_second, 365.0, 15.0);  // docs/protocol.md
 }
 
 TEST(MavlinkBandwidth, EightSonarsAsDistanceSensorWouldNotFitAt9600) {
@@ -113,10 +170,12 @@ TEST(MavlinkBandwidth, FullProfileAt20HzFitsHalfOf115200) {
   IrgsEncoderTicks ticks{1, 1000, 1200};
   b.add(ticks, 20.0);
   b.add(contact(), 10.0);
+  b.add(behaviourStatus(), 2.0);  // while a primitive runs
+  b.add(motionReport(), 1.0);
   EXPECT_LT(b.bytes_per_second, 0.6 * kBytesPerSecond115200);
   // docs/protocol.md quotes ~6 000 B/s including ~100 B/s of TIMESYNC and acks; small encoder
   // counts lose their zero high bytes to truncation, so the measured set is a little lower.
-  EXPECT_NEAR(b.bytes_per_second, 5900.0, 150.0);
+  EXPECT_NEAR(b.bytes_per_second, 6000.0, 150.0);
 }
 
 }  // namespace
