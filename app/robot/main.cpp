@@ -495,7 +495,7 @@ int main(int argc, char** argv) {
       irgs::app::ArcosFirmwareConfig arcos_config;
       arcos_config.watchdog_s = options.watchdog_s;
       arcos_config.strict = options.strict;
-      if (!options.tcp_port)
+      if (!options.listen)
         arcos_config.link_baud = options.baud;  // the pty is paced like a UART at this baud
       arcos = std::make_unique<irgs::app::ArcosFirmware>(std::move(sim), arcos_config);
     } else {

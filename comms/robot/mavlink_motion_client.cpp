@@ -243,7 +243,7 @@ void MavlinkMotionClient::onCommandResult(std::uint16_t primitive_id, const Comm
       break;
     case CommandOutcome::kTimedOut:
       if (!t->heard)  // every transmission or every answer lost
-        deliver(*t, motion::ReportKind::kRefused, motion::Reason::kNone, robot_time_s_, now_s);
+        deliver(*t, motion::ReportKind::kRefused, motion::Reason::kNoAnswer, robot_time_s_, now_s);
       break;
     case CommandOutcome::kCancelled:
       if (!t->heard)  // superseded before any answer, or the link closed

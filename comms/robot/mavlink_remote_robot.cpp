@@ -36,6 +36,27 @@ std::vector<TelemetrySample> MavlinkRemoteRobot::rebase(std::vector<TelemetrySam
   return samples;
 }
 
+bool MavlinkRemoteRobot::supports(motion::PrimitiveKind kind) const {
+  return robot_->motionControl()->supports(kind);
+}
+
+void MavlinkRemoteRobot::start(const motion::Primitive& primitive) {
+  robot_->motionControl()->start(primitive);
+}
+
+void MavlinkRemoteRobot::cancel() {
+  robot_->motionControl()->cancel();
+}
+
+std::vector<motion::MotionReport> MavlinkRemoteRobot::takeReports() {
+  // LinkedRobot hands a report out only after the samples up to its time, so the clock offset
+  // is known; a report stamped after a reboot no sample has shown yet takes the newest time.
+  std::vector<motion::MotionReport> reports = robot_->motionControl()->takeReports();
+  for (motion::MotionReport& r : reports)
+    r.time_s = clock_.otherTime(r.time_s).value_or(clock_.lastTime_s());
+  return reports;
+}
+
 std::vector<MessageSample> MavlinkRemoteRobot::takeMessages() {
   std::vector<MessageSample> messages = robot_->takeMessages();
   if (!clock_.started()) {

@@ -17,7 +17,8 @@ namespace irgs::comms {
 class MavlinkRemoteRobot final : public RemoteRobot,
                                  public FirmwareParameters,
                                  public MessageStream,
-                                 public BehaviourCommands {
+                                 public BehaviourCommands,
+                                 public MotionControl {
  public:
   static constexpr std::size_t kMaxEarlyMessages = 2048;
 
@@ -48,6 +49,13 @@ class MavlinkRemoteRobot final : public RemoteRobot,
   FirmwareParameters* firmwareParameters() override { return this; }
   MessageStream* messageStream() override { return this; }
   BehaviourCommands* behaviourCommands() override { return this; }
+  MotionControl* motionControl() override { return this; }
+
+  // MotionControl: the firmware's primitives, their reports put on the samples' clock.
+  bool supports(motion::PrimitiveKind kind) const override;
+  void start(const motion::Primitive& primitive) override;
+  void cancel() override;
+  std::vector<motion::MotionReport> takeReports() override;
 
   // FirmwareParameters
   void requestParams() override { robot_->requestParams(); }

@@ -26,6 +26,8 @@ class RobotClock {
   // sample; nullopt before the first sample and for a time stamped after a reboot the samples
   // have not shown yet (it would land far in the past). Never negative.
   std::optional<double> otherTime(double robot_time_s) const;
+  // Our time of the newest sample (0 before any).
+  double lastTime_s() const { return last_time_s_; }
 
  private:
   bool started_ = false;

@@ -64,6 +64,8 @@ const char* toString(Reason reason) {
       return "safety stop";
     case Reason::kNoSensors:
       return "missing sonars";
+    case Reason::kNoAnswer:
+      return "no answer from the robot";
   }
   return "?";
 }

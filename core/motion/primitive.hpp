@@ -131,6 +131,7 @@ enum class Reason : std::uint8_t {
   kNoProgress,   // the watchdog saw no progress (stuck against something the bumpers miss)
   kSafety,       // a safety stop (e-stop, ground station silent, bumper brake)
   kNoSensors,    // the sonars the primitive needs are missing
+  kNoAnswer,     // the robot never answered the start (a link that stayed silent)
 };
 const char* toString(Reason reason);
 
