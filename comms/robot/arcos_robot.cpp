@@ -15,6 +15,7 @@
 
 #include "comms/arcos/arcos_commands.hpp"
 #include "comms/arcos/arcos_packet.hpp"
+#include "comms/robot/arcos_motion.hpp"
 #include "comms/robot/arcos_telemetry.hpp"
 #include "comms/transport/transport_factory.hpp"
 
@@ -140,6 +141,29 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
       wantVelocity(arcosVelocityArguments(wanted, profile.limits), t);
   }
 
+  // A primitive's set points: speed and, far from the heading to reach, that heading (HEAD) for
+  // the robot's own controller; near it a turn rate (arcos_motion.hpp).
+  void wantSetpoint(const ArcosMotionSetpoint& setpoint, double t) {
+    if (session.state() != arc::ArcosState::kConnected)
+      return;
+    session.commands().want({arc::Command::kVel, setpoint.vel_mmps});
+    if (setpoint.head_deg)
+      session.commands().want({arc::Command::kHead, *setpoint.head_deg});
+    else
+      session.commands().want({arc::Command::kRVel, setpoint.rvel_degps});
+    session.pump(t);
+  }
+
+  // MotionControl calls, on the I/O thread: a primitive that ended between SIPs stops the
+  // wheels at once.
+  void afterMotionCall(double t) {
+    if (primitives.takeStopOwed()) {
+      session.sendUrgent(arc::Command::kStop);
+      session.pump(t);
+    }
+    flush(t);
+  }
+
   // The wanted set points; the scheduler sends them when they change (and as keep-alive).
   void wantVelocity(const ArcosVelocityArguments& a, double t) {
     if (session.state() != arc::ArcosState::kOpening &&
@@ -195,14 +219,18 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
       events.pop_front();
   }
 
-  // Writes what the session queued and publishes its SIPs, events and state.
-  void flush(double t) {
+  void sendOutgoing() {
     for (auto& packet : session.takeOutgoing()) {
       tx_bytes += packet.size();
       ++tx_packets;
       if (transport && transport_state == TransportState::kOpen)
         transport->send(packet);
     }
+  }
+
+  // Writes what the session queued and publishes its SIPs, events and state.
+  void flush(double t) {
+    sendOutgoing();
     const arc::ArcosState before = published_state;
     for (const arc::ArcosEvent& e : session.takeEvents()) {
       LinkEventKind kind = LinkEventKind::kTransport;
@@ -233,6 +261,8 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
           pushEvent(LinkEventKind::kLinkLost, t, linkState(), 4,
                     "ARCOS: link lost while driving; the command is cleared (drive again)");
       }
+      if (before == arc::ArcosState::kConnected)
+        primitives.abort(motion::Reason::kSafety);  // its set points went with the link
       if (state == arc::ArcosState::kOpening)
         converter.reset();  // a new connection: the robot may have restarted its odometry
       if (state == arc::ArcosState::kConnected)
@@ -246,7 +276,11 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
     for (const arc::StandardSip& sip : sips) {
       converted.push_back(converter.convert(sip, t));
       stalled_now = sip.leftStalled() || sip.rightStalled();
+      if (const auto setpoint =
+              primitives.onSample(converted.back(), converter.mapToOdometryHeading_rad()))
+        wantSetpoint(*setpoint, t);
     }
+    sendOutgoing();  // the set points of these SIPs go out now, not on the next tick
     if (!sips.empty() && stalled_now != stalled) {
       stalled = stalled_now;
       pushEvent(LinkEventKind::kStatusText, t, linkState(),
@@ -254,6 +288,10 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
                 stalled ? "ARCOS: wheels stalled" : "ARCOS: wheels free again");
     }
     const std::lock_guard lock(mutex);
+    for (motion::MotionReport& r : primitives.takeReports())
+      reports.push_back(r);
+    while (reports.size() > ArcosMotion::kMaxKeptReports)
+      reports.pop_front();
     for (auto& s : converted) {
       noteArrival(s, t);
       samples.push_back(std::move(s));
@@ -330,6 +368,7 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   RobotProfile profile;
   arc::ArcosClientSession session;
   ArcosTelemetryConverter converter;
+  ArcosMotion primitives{profile};
   boost::asio::steady_timer timer;
   std::chrono::steady_clock::time_point epoch;
   std::unique_ptr<Transport> transport;
@@ -360,6 +399,8 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
   mutable std::mutex mutex;
   VelocityCommand command;
   std::deque<TelemetrySample> samples;
+  std::deque<motion::MotionReport> reports;
+  double handed_out_s = 0.0;  // time of the newest sample update() returned
   std::deque<LinkEvent> events;
   std::uint64_t dropped_samples = 0;
   std::uint64_t total_samples = 0;
@@ -464,6 +505,8 @@ void ArcosRobot::drive(const VelocityCommand& command) {
     if (impl->stopped)
       return;
     const double t = impl->now();
+    impl->primitives.cancel();  // teleop takes over from a running primitive
+    impl->primitives.takeStopOwed();
     impl->wantVelocity(arguments, t);  // sent now if the scheduler allows, else on a tick
     impl->flush(t);
   });
@@ -478,6 +521,8 @@ void ArcosRobot::stop() {
     if (impl->stopped)
       return;
     const double t = impl->now();
+    impl->primitives.cancel();
+    impl->primitives.takeStopOwed();                // the STOP below is the stop
     impl->session.sendUrgent(arc::Command::kStop);  // ahead of any set point still waiting
     impl->session.pump(t);
     impl->flush(t);
@@ -489,6 +534,41 @@ std::vector<TelemetrySample> ArcosRobot::update(double /*wall_elapsed_s*/) {
   std::vector<TelemetrySample> out(std::make_move_iterator(impl_->samples.begin()),
                                    std::make_move_iterator(impl_->samples.end()));
   impl_->samples.clear();
+  if (!out.empty())
+    impl_->handed_out_s = out.back().time_s;
+  return out;
+}
+
+bool ArcosRobot::supports(motion::PrimitiveKind kind) const {
+  return impl_->primitives.supports(kind);  // constant: no I/O-thread state involved
+}
+
+void ArcosRobot::start(const motion::Primitive& primitive) {
+  boost::asio::post(impl_->io.context(), [impl = impl_, primitive] {
+    if (impl->stopped)
+      return;
+    impl->primitives.start(primitive);
+    impl->afterMotionCall(impl->now());
+  });
+}
+
+void ArcosRobot::cancel() {
+  boost::asio::post(impl_->io.context(), [impl = impl_] {
+    if (impl->stopped)
+      return;
+    impl->primitives.cancel();
+    impl->afterMotionCall(impl->now());
+  });
+}
+
+std::vector<motion::MotionReport> ArcosRobot::takeReports() {
+  // Only reports up to the newest sample handed out: the caller sees the samples first.
+  const std::lock_guard lock(impl_->mutex);
+  std::vector<motion::MotionReport> out;
+  while (!impl_->reports.empty() && impl_->reports.front().time_s <= impl_->handed_out_s) {
+    out.push_back(impl_->reports.front());
+    impl_->reports.pop_front();
+  }
   return out;
 }
 

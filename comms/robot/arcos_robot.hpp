@@ -31,6 +31,7 @@
 #include "comms/link/link_url.hpp"
 #include "comms/robot/arcos_params.hpp"
 #include "comms/transport/io_thread.hpp"
+#include "core/robot/motion_control.hpp"
 #include "core/robot/robot.hpp"
 
 namespace irgs::comms {
@@ -71,7 +72,7 @@ struct ArcosTelemetryRates {
   double sonar_readings_per_s = 0.0;
 };
 
-class ArcosRobot final : public Robot {
+class ArcosRobot final : public Robot, public MotionControl {
  public:
   struct OpenResult {
     std::unique_ptr<ArcosRobot> robot;  // null when error is set
@@ -94,6 +95,14 @@ class ArcosRobot final : public Robot {
   void drive(const VelocityCommand& command) override;
   void stop() override;
   std::vector<TelemetrySample> update(double wall_elapsed_s) override;
+  MotionControl* motionControl() override { return this; }
+
+  // MotionControl: the primitives run on the ground station on each SIP as it arrives and
+  // drive the robot's own speed and heading loops (VEL, HEAD, RVEL: arcos_motion.hpp).
+  bool supports(motion::PrimitiveKind kind) const override;
+  void start(const motion::Primitive& primitive) override;
+  void cancel() override;
+  std::vector<motion::MotionReport> takeReports() override;
 
   // For the console, the link-health panel and irgs-sim (same vocabulary as LinkedRobot).
   LinkState linkState() const;

@@ -43,6 +43,9 @@ class ArcosTelemetryConverter {
   // Map frame: see above. Takes effect at the next first SIP.
   void setAnchor(const Pose2& start_in_map) { anchor_ = start_in_map; }
 
+  // ARCOS odometry heading minus map heading (0 without an anchor or before the first SIP).
+  double mapToOdometryHeading_rad() const { return -to_map_.theta; }
+
   std::uint64_t skippedSonars() const { return skipped_sonars_; }
   const ArcosParams& params() const { return params_; }
 

@@ -1,0 +1,76 @@
+#pragma once
+// Motion primitives for an ARCOS robot (Pioneer-class, docs/pioneer.md). ARCOS has no wall
+// following or segment lists, but its own controllers hold a speed (VEL) and a heading (HEAD)
+// between SIPs. So the ground station runs the primitive's logic — the same
+// core/motion MotionExecutor the simulator and the MAVLink firmware run — on each SIP as it
+// arrives and turns each step into set points for the robot's own loops:
+//  - VEL: the step's forward speed;
+//  - HEAD while the heading to reach is more than kHeadPhase_rad away (a turn, a corner, the
+//    first leg of a segment): the Pioneer turns on its own controller and the host only watches;
+//  - RVEL near the heading (the fine phase and the wall follower's small corrections): one
+//    ARCOS degree is coarser than the 1-degree turn tolerance, and a rate nudges instead.
+// The ArcosCommandScheduler sends only changed values, at most 10 packets a second within the
+// baud budget. Pure: no I/O, no threads; ArcosRobot steps it on its I/O thread (pure and unit
+// tested here).
+
+#include <optional>
+#include <vector>
+
+#include "core/geometry/types.hpp"
+#include "core/motion/motion_executor.hpp"
+#include "core/motion/primitive.hpp"
+#include "core/robot/robot_profile.hpp"
+#include "core/robot/telemetry.hpp"
+
+namespace irgs::comms {
+
+struct ArcosMotionSetpoint {
+  int vel_mmps = 0;
+  std::optional<int> head_deg;  // HEAD argument (ARCOS odometry frame, 0..359), else RVEL
+  int rvel_degps = 0;
+  friend bool operator==(const ArcosMotionSetpoint&, const ArcosMotionSetpoint&) = default;
+};
+
+// The HEAD argument for a heading in the ARCOS odometry frame: whole degrees in [0, 360).
+int arcosHeadingArgument(double heading_rad);
+
+class ArcosMotion {
+ public:
+  // Reports nobody takes are dropped oldest first beyond this many (storage stays bounded).
+  static constexpr std::size_t kMaxKeptReports = 256;
+  static constexpr double kHeadPhase_rad = degToRad(5.0);
+
+  explicit ArcosMotion(const RobotProfile& profile);
+
+  // Every kind: the executor refuses what the robot's sonars cannot serve (kNoSensors).
+  bool supports(motion::PrimitiveKind kind) const;
+  // Starts on the newest SIP; refused with kNoAnswer before the first one.
+  void start(const motion::Primitive& primitive);
+  void cancel();
+  // Ends a running primitive as failed (the link was lost: the set points were cleared).
+  void abort(motion::Reason reason);
+
+  // One SIP, in order. `map_to_arcos_rad` is the ARCOS odometry heading minus the map heading.
+  // Returns the set point to want when a primitive ran this step, and the stop (zeros) on the
+  // step it ended; nothing while idle, so teleop is left alone.
+  std::optional<ArcosMotionSetpoint> onSample(const TelemetrySample& sample,
+                                              double map_to_arcos_rad);
+  // A stop owed to the robot by start()/cancel()/abort() (a primitive that ended between SIPs).
+  bool takeStopOwed();
+
+  bool running() const { return executor_.running(); }
+  // Reports queued since the last call, oldest first (times are the SIPs' arrival times).
+  std::vector<motion::MotionReport> takeReports();
+
+ private:
+  void collect();
+  void keep(const motion::MotionReport& report);
+
+  motion::MotionExecutor executor_;
+  MotionLimits limits_;
+  std::optional<motion::MotionInput> last_input_;
+  std::vector<motion::MotionReport> reports_;
+  bool stop_owed_ = false;
+};
+
+}  // namespace irgs::comms
