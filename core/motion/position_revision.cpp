@@ -13,6 +13,13 @@ double quantiseAngle(double angle_rad, double quantum_rad) {
   return std::round(angle_rad / quantum_rad) * quantum_rad;
 }
 
+std::optional<double> frontWallSkew(double left_m, double right_m, double baseline_m) {
+  if (!(baseline_m > 0.0) || !std::isfinite(left_m) || !std::isfinite(right_m) || left_m < 0.0 ||
+      right_m < 0.0)
+    return std::nullopt;
+  return std::atan2(right_m - left_m, baseline_m);
+}
+
 std::optional<double> frontWallTurn(double left_m, double right_m, double baseline_m,
                                     bool wall_on_left, double quantum_rad) {
   if (!(baseline_m > 0.0) || !std::isfinite(left_m) || !std::isfinite(right_m) || left_m < 0.0 ||

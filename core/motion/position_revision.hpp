@@ -16,6 +16,10 @@ double quantiseAngle(double angle_rad, double quantum_rad);
 // leaves the robot parallel to the wall with the wall on the chosen side. Quantised to
 // quantum_rad, never zero (at least one quantum away from the wall). nullopt for a bad
 // baseline or non-finite/negative readings.
+// How far the wall ahead is from square to the heading (0: straight across), from the same two
+// forward echoes; nullopt as frontWallTurn.
+std::optional<double> frontWallSkew(double left_m, double right_m, double baseline_m);
+
 std::optional<double> frontWallTurn(double left_m, double right_m, double baseline_m,
                                     bool wall_on_left, double quantum_rad);
 

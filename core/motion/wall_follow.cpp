@@ -6,6 +6,9 @@
 #include "core/motion/position_revision.hpp"
 
 namespace irgs::motion {
+namespace {
+constexpr double kSquareWall_rad = degToRad(20.0);  // a wall ahead this close to square is across
+}  // namespace
 
 const char* wallFollowConfigProblem(const WallFollowConfig& c) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
@@ -144,6 +147,21 @@ VelocityCommand WallFollowControl::handleWallAhead(const Pose2& pose) {
   ++corner_turns_;
   note(WallFollowEvent::kWallAhead, t);
   return startTurn(t, WallFollowMode::kFollow, pose);
+}
+
+// While clearing a convex corner: a surface straight across the way, with the body already past
+// the corner, is the far side of a passage (an obstacle near a wall), not the next face of the
+// followed one (met at a slant). Turning round the corner keeps the traced surface; turning
+// away would trace the other one instead.
+bool WallFollowControl::passageAhead(const Pose2& pose) const {
+  const SonarRoles& r = view_.roles();
+  const auto dl = view_.range(r.front_left), dr = view_.range(r.front_right);
+  const auto skew = dl && dr ? frontWallSkew(*dl, *dr, r.front_baseline_m) : std::nullopt;
+  if (!skew || std::abs(*skew) > kSquareWall_rad)
+    return false;
+  const double past_corner =
+      (pose.position() - leg_start_).norm() - (leg_length_m_ - config_.distance_m);
+  return past_corner >= view_.geometry().body_radius_m;
 }
 
 std::optional<double> WallFollowControl::sideWallDistance() const {
@@ -321,9 +339,9 @@ VelocityCommand WallFollowControl::modeStep(const MotionInput& input, const Pose
       }
       return straightCommand(pose.theta, pose.theta, config_.speed_mps);
     case WallFollowMode::kClear:
-      if (wall_ahead)
+      if (wall_ahead && !passageAhead(pose))
         return handleWallAhead(pose);
-      if ((pose.position() - leg_start_).norm() >= leg_length_m_) {
+      if (wall_ahead || (pose.position() - leg_start_).norm() >= leg_length_m_) {
         ++corner_turns_;
         note(WallFollowEvent::kCornerTurn, side_sign_ * 0.5 * kPi);
         return startTurn(side_sign_ * 0.5 * kPi, WallFollowMode::kReacquire, pose);

@@ -115,6 +115,7 @@ class WallFollowControl {
  private:
   VelocityCommand startTurn(double turn_rad, WallFollowMode next, const Pose2& pose);
   VelocityCommand handleWallAhead(const Pose2& pose);
+  bool passageAhead(const Pose2& pose) const;
   VelocityCommand follow(const Pose2& pose);
   VelocityCommand escapeBlocked(const Pose2& pose);
   VelocityCommand modeStep(const MotionInput& input, const Pose2& pose);

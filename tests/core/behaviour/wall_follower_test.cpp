@@ -66,6 +66,26 @@ TEST(WallFollower, FollowsTheDefaultMapOnTheLeftWithNoiseAndNoCollision) {
   EXPECT_GT(run.result.scenario.metrics.distance_travelled_m, 20.0);
 }
 
+// A rectangle 0.72 m from two room walls (paper 003's simulation 3 has 0.8 m, met at a slant
+// there). Traced counter-clockwise
+// (wall on the left), each convex corner into such a passage meets the room wall straight ahead
+// while the follower clears the corner; it must turn round the corner, not away along the room
+// wall (which lost the obstacle and traced the room instead).
+TEST(WallFollower, TurnsRoundAnObstacleCornerIntoANarrowPassageInsteadOfTakingTheWallAhead) {
+  WorldMap map;
+  map.walls.push_back({"room", {{0.0, 0.0}, {4.0, 0.0}, {4.0, 3.0}, {0.0, 3.0}}, true, {}});
+  map.obstacles.push_back({"rect", {{0.72, 0.72}, {1.8, 0.72}, {1.8, 1.4}, {0.72, 1.4}}, {}});
+  map.start = {1.6, 1.7, kPi};  // beside the top face, heading west, the obstacle on the left
+  WallFollowConfig config;
+  config.wall_on_left = true;
+  const FollowRun run = runFollower(map, config, idealSimConfig(), 60.0);
+  EXPECT_EQ(run.result.scenario.metrics.bumper_events, 0u);
+  const auto segments = map.segments();
+  for (std::size_t i = 4; i < segments.size(); ++i)  // the rectangle's four faces
+    EXPECT_LT(run.segment_visits[i], 0.45) << "obstacle face " << i - 4 << " never followed";
+  EXPECT_GT(run.segment_visits[2], 1.0) << "followed the room's top wall: lost the obstacle";
+}
+
 TEST(WallFollower, RejectsABadConfigAndAProfileWithoutSideSonars) {
   const RobotProfile robot = test::thesisRobot();
   WallFollowConfig bad;
