@@ -7,6 +7,10 @@
 #include "comms/arcos/arcos_commands.hpp"
 
 namespace irgs::comms::arcos {
+namespace {
+constexpr double kSyncRetryRoundTrips = 2.5;  // resend a SYNC only this many round trips on
+constexpr double kMaxSyncRetry_s = 3.0;       // however slow the link looked
+}  // namespace
 
 const char* toString(ArcosState state) {
   switch (state) {
@@ -25,7 +29,7 @@ const char* toString(ArcosState state) {
 }
 
 ArcosClientSession::ArcosClientSession(ArcosSessionConfig config)
-    : config_(config), commands_(config.commands) {}
+    : config_(config), sync_retry_s_(config.sync_retry_s), commands_(config.commands) {}
 
 void ArcosClientSession::setState(ArcosState state, double now_s, std::string text, bool warning) {
   state_ = state;
@@ -38,6 +42,7 @@ void ArcosClientSession::queue(std::vector<std::uint8_t> payload) {
 
 void ArcosClientSession::start(double now_s) {
   identity_.reset();
+  sync_retry_s_ = config_.sync_retry_s;
   beginSync(now_s);
 }
 
@@ -50,6 +55,8 @@ void ArcosClientSession::beginSync(double now_s) {
 }
 
 void ArcosClientSession::sendSync(double now_s) {
+  if (sync_attempts_ == 0)
+    step_sent_s_ = now_s;
   queue(commandPayload(static_cast<std::uint8_t>(sync_step_)));
   last_sync_sent_s_ = now_s;
   ++sync_attempts_;
@@ -97,6 +104,9 @@ void ArcosClientSession::onPacket(const Packet& packet, double now_s) {
     }
     if (type != sync_step_)
       return;  // a late echo of an earlier attempt
+    // The round trip, at most (the echo may answer a resend): later SYNCs wait for it.
+    sync_retry_s_ = std::max(
+        sync_retry_s_, std::min(kMaxSyncRetry_s, kSyncRetryRoundTrips * (now_s - step_sent_s_)));
     if (sync_step_ < 2) {
       ++sync_step_;
       sync_attempts_ = 0;
@@ -144,7 +154,7 @@ void ArcosClientSession::tick(double now_s) {
     case ArcosState::kDisconnected:
       return;
     case ArcosState::kSyncing:
-      if (now_s - last_sync_sent_s_ >= config_.sync_retry_s) {
+      if (now_s - last_sync_sent_s_ >= sync_retry_s_) {
         if (sync_attempts_ >= config_.max_sync_attempts) {
           events_.push_back({now_s, state_, true,
                              "ARCOS: no answer to SYNC" + std::to_string(sync_step_) +

@@ -6,7 +6,10 @@
 // at least every 20 ms, and writes what takeOutgoing() returns.
 //
 //   kDisconnected --start()--> kSyncing: SYNC0 until echoed, then SYNC1, then SYNC2 (each
-//     resent every sync_retry_s; after max_sync_attempts without progress: CLOSE, start over)
+//     resent every sync_retry_s, or 2.5 round trips once an echo has shown a slower link;
+//     after max_sync_attempts without progress: CLOSE, start over). Resending before the answer
+//     can arrive is not harmless: after SYNC2 the robot reads 1 as OPEN and 2 as CLOSE, so a
+//     second SYNC2 closes the connection the first one made.
 //   SYNC2 reply (name, class, subclass) --> OPEN, then ENABLE 1 and SONAR 1 through the
 //     scheduler --> kOpening
 //   first standard SIP --> kConnected; the scheduler keeps the watchdog fed (a refreshed motion
@@ -94,6 +97,8 @@ class ArcosClientSession {
   int sync_step_ = 0;  // 0, 1, 2: the SYNC packet awaiting its answer
   int sync_attempts_ = 0;
   double last_sync_sent_s_ = 0.0;
+  double step_sent_s_ = 0.0;   // first transmission of the SYNC awaiting its answer
+  double sync_retry_s_ = 0.0;  // config's, lengthened to 2.5 measured round trips
   double opened_s_ = 0.0;
   std::optional<RobotIdentity> identity_;
   ArcosStats stats_;

@@ -95,6 +95,38 @@ TEST(ArcosClientSession, ResendsAnUnansweredSyncAndStartsOverAfterTooManyAttempt
   EXPECT_EQ(sent, (std::vector<int>{1, 1, 2, 0}));
 }
 
+// Over a late link (here 0.25 s each way) a SYNC resent every 0.3 s reaches the robot after
+// the robot already answered it; a second SYNC2 then arrives as CLOSE once the robot is
+// synchronised, and the connection never opens. The first echo shows the round trip: later
+// SYNCs wait 2.5 of them before a resend.
+TEST(ArcosClientSession, WaitsTheMeasuredRoundTripBeforeResendingASyncOverALateLink) {
+  ArcosClientSession session;
+  session.start(0.0);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{0}));
+  EXPECT_EQ(commandsWhileTicking(session, 0.0, 0.5), (std::vector<int>{0}));  // 0.3 s: resent
+  session.onPacket(packetOf({0}), 0.5);  // the first SYNC0's echo: round trip 0.5 s at most
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{1}));
+  session.onPacket(packetOf({0}), 0.8);  // the resend's echo: ignored
+  EXPECT_EQ(commandsWhileTicking(session, 0.8, 1.0), (std::vector<int>{}));
+  session.onPacket(packetOf({1}), 1.0);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{2}));
+  // No second SYNC2 before 1.0 + 2.5 x 0.5 s; the reply comes at 1.5 s.
+  EXPECT_EQ(commandsWhileTicking(session, 1.0, 1.5), (std::vector<int>{}));
+  session.onPacket(packetOf(encodeSync2Reply({"MobileSim", "Pioneer", "p3dx"})), 1.5);
+  EXPECT_EQ(commandsOf(session.takeOutgoing()), (std::vector<int>{1}));  // OPEN
+  EXPECT_EQ(session.state(), ArcosState::kOpening);
+}
+
+TEST(ArcosClientSession, StillResendsAnUnansweredSyncAfterTheMeasuredRoundTrips) {
+  ArcosClientSession session;
+  session.start(0.0);
+  session.takeOutgoing();
+  session.onPacket(packetOf({0}), 0.4);  // round trip 0.4 s: resends after 1.0 s
+  session.takeOutgoing();
+  EXPECT_EQ(commandsWhileTicking(session, 0.4, 1.35), (std::vector<int>{}));
+  EXPECT_EQ(commandsWhileTicking(session, 1.35, 1.45), (std::vector<int>{1}));
+}
+
 TEST(ArcosClientSession, ClosesAStillRunningServerThatAnswersSyncWithSips) {
   ArcosClientSession session;
   session.start(0.0);
