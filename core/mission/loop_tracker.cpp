@@ -51,7 +51,8 @@ std::optional<std::size_t> LoopTracker::onPose(const Pose2& pose, bool following
     if (loop_distance_m_ - distance_[i] < min_loop_length_m_)
       break;
     if ((pose.position() - indices_[i]).norm() < closure_radius_m_ &&
-        std::abs(wrapAngle(pose.theta - heading_[i])) < degToRad(60.0))
+        std::abs(wrapAngle(pose.theta - heading_[i])) < degToRad(60.0) &&
+        std::abs(loopFrom(i, pose.position()).signed_area_m2) >= kMinLoopArea_m2)
       return i;
   }
   return std::nullopt;

@@ -3,7 +3,9 @@
 // Fig. 3.7; digest 4.5): while the robot follows a surface an index is dropped every
 // spacing_m of path; the loop is closed when the robot is back within closure_radius_m of an
 // earlier index of the same loop, heading within 60 degrees of the way it passed there, after
-// at least min_loop_length_m of loop. Host side, in the map frame.
+// at least min_loop_length_m of loop, around some area: a path that came back on itself (the
+// follower lost the wall and turned back along it) encloses nothing and closes no loop. Host
+// side, in the map frame.
 
 #include <cstddef>
 #include <optional>
@@ -16,6 +18,9 @@ namespace irgs {
 
 class LoopTracker {
  public:
+  // Smaller than any surface followed at the usual 0.3 m (a 10 cm post gives ~0.4 m2).
+  static constexpr double kMinLoopArea_m2 = 0.2;
+
   LoopTracker(double spacing_m, double closure_radius_m, double min_loop_length_m);
 
   // Forgets the current loop (a new surface is being followed).

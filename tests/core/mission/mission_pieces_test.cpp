@@ -73,6 +73,18 @@ TEST(LoopTracker, DoesNotCloseWhenComingBackTheOtherWay) {
     EXPECT_FALSE(loops.onPose({0.1 * i, 0.05, kPi}, true)) << i;
 }
 
+// The follower lost the wall and turned back along its own path, then round again (tb3_sandbox
+// once closed such a 0.04 m2 "outline" of six indices and ended the exploration there).
+TEST(LoopTracker, APathThatCameBackOnItselfEnclosesNothingAndClosesNoLoop) {
+  LoopTracker loops(0.5, 0.35, 1.5);
+  for (int i = 0; i <= 20; ++i)
+    loops.onPose({0.1 * i, 0.0, 0.0}, true);
+  for (int i = 20; i >= 0; --i)
+    loops.onPose({0.1 * i, 0.05, kPi}, true);
+  for (int i = 0; i <= 5; ++i)  // heading as at the first index, within reach of it
+    EXPECT_FALSE(loops.onPose({0.1 * i, 0.02, 0.0}, true)) << i;
+}
+
 ExploredRecord roomWithOneObstacle() {
   ExploredRecord record(0.6);
   TracedLoop outline;
