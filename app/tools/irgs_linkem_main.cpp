@@ -44,11 +44,12 @@ void usage(std::FILE* out) {
       "usage: irgs-linkem --listen HOST:PORT --connect HOST:PORT [--delay-ms MS] [--jitter-ms MS]\n"
       "                   [--baud BAUD] [--stall-every-s S --stall-ms MS] [--loss P]\n"
       "                   [--corrupt P] [--seed N]\n"
-      "A TCP relay behaving like a slow, late, lossy serial link in both directions.\n",
+      "A TCP relay behaving like a slow, late, lossy serial link in both directions.\n"
+      "--listen port 0 takes any free port; the line 'linkem: listening on HOST:PORT' names it.\n",
       out);
 }
 
-std::optional<tcp::endpoint> endpoint(const std::string& text) {
+std::optional<tcp::endpoint> endpoint(const std::string& text, bool any_port) {
   const auto colon = text.rfind(':');
   if (colon == std::string::npos)
     return std::nullopt;
@@ -58,7 +59,7 @@ std::optional<tcp::endpoint> endpoint(const std::string& text) {
     return std::nullopt;
   try {
     const int port = std::stoi(text.substr(colon + 1));
-    if (port <= 0 || port > 65535)
+    if (port < (any_port ? 0 : 1) || port > 65535)
       return std::nullopt;
     return tcp::endpoint(address, static_cast<unsigned short>(port));
   } catch (const std::exception&) {
@@ -82,7 +83,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
     const std::string value = argv[++i];
     try {
       if (arg == "--listen" || arg == "--connect") {
-        const auto e = endpoint(value);
+        const auto e = endpoint(value, arg == "--listen");  // listen on port 0: any free one
         if (!e) {
           error = arg + ": expected HOST:PORT with a numeric address, got '" + value + "'";
           return std::nullopt;
@@ -266,8 +267,9 @@ int main(int argc, char** argv) {
                  ec.message().c_str());
     return 1;
   }
+  const tcp::endpoint bound = acceptor.local_endpoint(ec);  // port 0: the one the system chose
   std::printf("linkem: listening on %s:%u, relaying to %s:%u\n",
-              options->listen.address().to_string().c_str(), options->listen.port(),
+              bound.address().to_string().c_str(), bound.port(),
               options->connect.address().to_string().c_str(), options->connect.port());
   std::fflush(stdout);
   int connections = 0;

@@ -24,6 +24,16 @@
 // answers every 20 Hz sample, and at most 20 a second may reach the robot.
 //
 // Wall time: ~2 min (map building takes 110-146 s of robot time; the link runs in real time).
+//
+// Issue 24, behind a late link: the same room through irgs-linkem, 150 ms + uniform 0-100 ms of
+// delay each way (the issue's measurement: map building never left "seek wall", 0.00 m in
+// 900 s). MAVLink at 115200 baud: the firmware runs the primitives; ARCOS at 9600 baud: the
+// ground station supervises them with VEL/HEAD/RVEL (docs/pioneer.md). Both must finish with a
+// map as good as in-process (F1 >= 0.9 vs truth, >= kMinAgreementF1 vs the in-process map),
+// within the baud budget both ways (the relay counts the bytes); MAVLink within 1.5x the
+// in-process time (issue 24's acceptance). Measured 2026-12-07 with noise: MAVLink 130.3 s vs
+// 121.6 s in-process, F1 0.983; ARCOS 253 s vs 126.6 s (2.0x: the host's corrections wait a
+// SIP and a link delay), F1 0.948.
 
 #include <gtest/gtest.h>
 
@@ -150,6 +160,99 @@ TEST_F(MapBuildingOverTheLink, BuildsTheSameMapAsTheInProcessRun) {
   EXPECT_EQ(link_mb["obstacles"], local_mb["obstacles"]);
   const double local_area = local_mb["outline_area_m2"].get<double>();
   EXPECT_NEAR(link_mb["outline_area_m2"].get<double>(), local_area, 0.1 * local_area);
+}
+
+// The number after `key` in `text` (0 when absent).
+double numberAfter(const std::string& text, const std::string& key) {
+  const auto at = text.find(key);
+  return at == std::string::npos ? 0.0 : std::strtod(text.c_str() + at + key.size(), nullptr);
+}
+
+struct LateLinkCase {
+  std::string robot_profile;  // empty: the default robot
+  bool arcos = false;
+  int baud = 115200;
+};
+
+void buildBehindALateLink(const fs::path& work, const LateLinkCase& c) {
+  const std::string map = std::string(IRGS_SOURCE_DIR) + "/resources/maps/thesis_arena_250.json";
+  std::vector<std::string> profile;
+  if (!c.robot_profile.empty())
+    profile = {"--robot", std::string(IRGS_SOURCE_DIR) + "/resources/robots/" + c.robot_profile};
+  const auto with = [&profile](std::vector<std::string> args) {
+    args.insert(args.end(), profile.begin(), profile.end());
+    return args;
+  };
+  const fs::path local = work / "in_process";
+  const fs::path linked = work / "linked";
+  Child in_process(with({IRGS_SIM_EXE, "--map", map, "--behaviour", "mapbuild", "--ideal", "--out",
+                         local.string(), "--quiet"}));
+  ASSERT_EQ(in_process.wait(120.0), 0) << in_process.output();
+  const nlohmann::json local_metrics = readJson(local / "metrics.json");
+  ASSERT_TRUE(local_metrics.is_object());
+
+  std::vector<std::string> robot_args = {IRGS_ROBOT_EXE, "--map", map,
+                                         "--ideal",      "--tcp", "127.0.0.1:0"};
+  if (c.arcos)
+    robot_args.insert(robot_args.end(), {"--protocol", "arcos", "--strict"});
+  auto robot = std::make_unique<Child>(with(robot_args));
+  ASSERT_TRUE(robot->waitOutput("tcp ", 20.0)) << robot->output();
+  ASSERT_TRUE(robot->waitOutput("\n", 5.0));
+  const int robot_port = static_cast<int>(numberAfter(robot->output(), "tcp "));
+  ASSERT_GT(robot_port, 0) << robot->output();
+  const std::string baud = std::to_string(c.baud);
+  Child linkem({IRGS_LINKEM_EXE, "--listen", "127.0.0.1:0", "--connect",
+                "127.0.0.1:" + std::to_string(robot_port), "--delay-ms", "150", "--jitter-ms",
+                "100", "--baud", baud, "--seed", "1"});
+  ASSERT_TRUE(linkem.waitOutput(", relaying", 10.0)) << linkem.output();
+  const int link_port = static_cast<int>(numberAfter(linkem.output(), "127.0.0.1:"));
+  ASSERT_GT(link_port, 0) << linkem.output();
+
+  const std::string url = "tcp://127.0.0.1:" + std::to_string(link_port) + "?baud=" + baud +
+                          (c.arcos ? "&protocol=arcos" : "");
+  Child sim(
+      with({IRGS_SIM_EXE, "--connect", url, "--map", map, "--behaviour", "mapbuild", "--compare",
+            (local / "grid.yaml").string(), "--duration", "600", "--out", linked.string()}));
+  const int code = sim.wait(660.0);
+  ASSERT_TRUE(linkem.waitOutput("closed:", 10.0)) << linkem.output();
+  robot->signal(SIGTERM);
+  robot->wait(10.0);
+  linkem.signal(SIGTERM);
+  linkem.wait(5.0);
+  ASSERT_EQ(code, 0) << sim.output();
+
+  const nlohmann::json link_metrics = readJson(linked / "metrics.json");
+  ASSERT_TRUE(link_metrics.is_object());
+  EXPECT_TRUE(link_metrics["behaviour"]["finished"].get<bool>());
+  EXPECT_FALSE(link_metrics["behaviour"]["failed"].get<bool>()) << link_metrics["behaviour"];
+  const double local_s = local_metrics["duration_s"].get<double>();
+  const double link_s = link_metrics["duration_s"].get<double>();
+  // "to robot N bytes (...), to ground station M bytes": what the relay carried.
+  const std::string& relay = linkem.output();
+  const double up_bps = numberAfter(relay, "to robot ") / link_s;
+  const double down_bps = numberAfter(relay, "to ground station ") / link_s;
+  const double budget_bps = c.baud / 10.0;
+  std::printf(
+      "behind 150 ms + 0-100 ms at %d baud (%s): %.1f s vs %.1f s in-process (%.2fx); F1 vs "
+      "truth %.4f (in-process %.4f), vs in-process %.4f; uplink %.0f B/s, downlink %.0f B/s of "
+      "%.0f\n%s",
+      c.baud, c.arcos ? "ARCOS" : "MAVLink", link_s, local_s, link_s / local_s,
+      f1Of(link_metrics, "map_score"), f1Of(local_metrics, "map_score"),
+      f1Of(link_metrics, "map_agreement"), up_bps, down_bps, budget_bps, robot->output().c_str());
+  EXPECT_GE(f1Of(link_metrics, "map_score"), kMinTruthF1);
+  EXPECT_GE(f1Of(link_metrics, "map_agreement"), kMinAgreementF1);
+  EXPECT_LE(up_bps, 0.5 * budget_bps);  // commands: at most half the link
+  EXPECT_LE(down_bps, budget_bps);
+  if (!c.arcos)
+    EXPECT_LE(link_s, 1.5 * local_s);
+}
+
+TEST_F(MapBuildingOverTheLink, CompletesBehindALateLinkOverMavlink) {
+  buildBehindALateLink(work_, {"", false, 115200});
+}
+
+TEST_F(MapBuildingOverTheLink, CompletesBehindALateLinkOverArcos) {
+  buildBehindALateLink(work_, {"pioneer_amigo.json", true, 9600});
 }
 
 }  // namespace
