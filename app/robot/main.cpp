@@ -70,7 +70,8 @@ const char* const kUsage =
     "  and stderr, at most every 5 s). The key's fingerprint is printed on stderr.\n"
     "  --baud N limits the pty output to N/10 bytes/s like a UART\n"
     "  (default 115200); below 38400 the compact profile is sent (IRGS_POSE_2D 10 Hz,\n"
-    "  IRGS_SONAR_SCAN 5 Hz). --rate HZ: odometry and sonar telemetry rate (default 20).\n"
+    "  IRGS_SONAR_SCAN 5 Hz), also over --tcp/--udp (a bridge to a serial link: only the pty\n"
+    "  is paced). --rate HZ: odometry and sonar telemetry rate (default 20).\n"
     "  --gcs-timeout S: stop when ground-station heartbeats are missing S seconds (1.5).\n"
     "  --ideal: no odometry or sensor errors. Defaults: bundled default map and thesis robot.\n"
     "  --log-motion: print 'motion start|stop t=S mono=S' on stdout when the robot starts or\n"
@@ -463,9 +464,10 @@ int main(int argc, char** argv) {
   // then carries its raw rate and temperature, so the encoder + gyro filter works over the link.
   if (!options.ideal)
     sim_config.gyro = irgs::autogyroErrorModel();
-  // Below 38400 baud the full telemetry does not fit: use the compact dialect profile.
+  // Below 38400 baud the full telemetry does not fit: use the compact dialect profile (over
+  // TCP/UDP too, where --baud names the serial link behind a bridge).
   irgs::app::FirmwareConfig fw_config;
-  if (options.baud < 38400 && !options.listen) {
+  if (options.baud < 38400) {
     fw_config = irgs::app::slowLinkFirmwareConfig();
   } else {
     fw_config.odometry_period_s = 1.0 / options.rate_hz;

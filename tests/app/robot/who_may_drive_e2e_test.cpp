@@ -446,6 +446,33 @@ TEST_F(WhoMayDrive, TheTcpServerIsOnLoopbackUnlessGivenAnAddress) {
   EXPECT_TRUE(TcpStation(port, 255, std::nullopt, false, *lan).connected());
 }
 
+// Issue 24, link case (d): `--baud` below 38400 selects the compact telemetry also over TCP,
+// where it names the serial link behind a bridge (before, a 9600-baud relay was flooded with the
+// full profile at ~10.8 kB/s and the heartbeat drowned: link lost, reconnect, forever).
+TEST_F(WhoMayDrive, ASlowBaudOverTcpSendsTheCompactTelemetryWithinItsBudget) {
+  Child robot({IRGS_ROBOT_EXE, "--tcp", "0", "--baud", "9600", "--ideal"});
+  const std::uint16_t port = announcedPort(robot);
+  ASSERT_NE(port, 0) << robot.output();
+  TcpStation station(port, 255);
+  ASSERT_TRUE(station.connected());
+  const auto t0 = Clock::now();
+  while (std::chrono::duration<double>(Clock::now() - t0).count() < 4.0) {
+    station.heartbeat();
+    station.pump(0.25);
+  }
+  std::size_t compact = 0, full = 0, bytes = 0;
+  for (const mav::Frame& f : station.frames()) {
+    compact += f.as<mav::IrgsPose2d>() ? 1 : 0;
+    full += f.as<mav::Odometry>() || f.as<mav::LocalPositionNed>() ? 1 : 0;
+    bytes += f.payload_length + 12u;  // MAVLink 2 header and checksum, unsigned
+  }
+  EXPECT_GT(compact, 20u);  // IRGS_POSE_2D at 10 Hz
+  EXPECT_EQ(full, 0u);
+  EXPECT_LT(static_cast<double>(bytes) / 4.0, 960.0) << bytes << " bytes in 4 s";
+  robot.signal(SIGTERM);
+  EXPECT_EQ(robot.wait(10.0), 0) << robot.output();
+}
+
 TEST_F(WhoMayDrive, BadListenAndKeyArgumentsAreClearErrors) {
   const auto run = [](std::vector<std::string> args) {
     args.insert(args.begin(), IRGS_ROBOT_EXE);
