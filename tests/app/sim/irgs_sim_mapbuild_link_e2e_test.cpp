@@ -243,8 +243,9 @@ void buildBehindALateLink(const fs::path& work, const LateLinkCase& c) {
   EXPECT_GE(f1Of(link_metrics, "map_agreement"), kMinAgreementF1);
   EXPECT_LE(up_bps, 0.5 * budget_bps);  // commands: at most half the link
   EXPECT_LE(down_bps, budget_bps);
-  if (!c.arcos)
+  if (!c.arcos) {
     EXPECT_LE(link_s, 1.5 * local_s);
+  }
 }
 
 TEST_F(MapBuildingOverTheLink, CompletesBehindALateLinkOverMavlink) {
