@@ -25,7 +25,7 @@ struct PlanningSettings {
   double resolution_m = 0.05;
   double clearance_m = 0.03;  // kept between the robot's body and obstacles, beyond its radius
   double turn_quantum_rad = degToRad(15.0);
-  TravelTimeModel time_model;  // the speeds the robot drives at (TravelBehaviour's limits)
+  TravelTimeModel time_model;  // the speeds the robot drives at (the SEGMENTS primitive's)
   double budget_s = 0.25;      // A* wall-time budget: the GUI never waits longer for a preview
   std::uint64_t max_expansions = 0;
   double goal_snap_m = 0.25;  // a goal this close to a free cell moves onto it
