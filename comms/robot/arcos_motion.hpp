@@ -5,10 +5,12 @@
 // core/motion MotionExecutor the simulator and the MAVLink firmware run — on each SIP as it
 // arrives and turns each step into set points for the robot's own loops:
 //  - VEL: the step's forward speed;
-//  - HEAD while the heading to reach is more than kHeadPhase_rad away (a turn, a corner, the
-//    first leg of a segment): the Pioneer turns on its own controller and the host only watches;
-//  - RVEL near the heading (the fine phase and the wall follower's small corrections): one
-//    ARCOS degree is coarser than the 1-degree turn tolerance, and a rate nudges instead.
+//  - HEAD while the heading to reach is more than kHeadPhase_rad (1.5 deg) away: turns, corners,
+//    legs and the wall follower's corrections: the Pioneer steers on its own controller and the
+//    host only watches (behind 150-250 ms of link, 5 deg took 2.0x the in-process time, with
+//    the host's late corrections, 1.5 deg 1.3x);
+//  - RVEL within it (the last degree of a turn): one ARCOS degree is coarser than the 1-degree
+//    turn tolerance, and a rate nudges instead.
 // The ArcosCommandScheduler sends only changed values, at most 10 packets a second within the
 // baud budget. Pure: no I/O, no threads; ArcosRobot steps it on its I/O thread (pure and unit
 // tested here).
@@ -38,7 +40,7 @@ class ArcosMotion {
  public:
   // Reports nobody takes are dropped oldest first beyond this many (storage stays bounded).
   static constexpr std::size_t kMaxKeptReports = 256;
-  static constexpr double kHeadPhase_rad = degToRad(5.0);
+  static constexpr double kHeadPhase_rad = degToRad(1.5);
 
   explicit ArcosMotion(const RobotProfile& profile);
 
