@@ -60,10 +60,9 @@ QString LinkController::connectTo(const QString& url) {
   if (!linked())
     simulator_factory_ = session_.robotFactory();
   const std::string text = parsed.url->toString();
-  RobotFactory factory = [io = io_, link_url = *parsed.url, tap = frame_tap_,
-                          signing = signing_key_](
-                             const WorldMap& world,
-                             const RobotProfile& profile) -> std::unique_ptr<Robot> {
+  RobotFactory factory =
+      [io = io_, link_url = *parsed.url, tap = frame_tap_, signing = signing_key_](
+          const WorldMap& world, const RobotProfile& profile) -> std::unique_ptr<Robot> {
     comms::RemoteRobotConfig config;
     config.mavlink.link.tap = tap;
     config.mavlink.link.signing_key = signing;

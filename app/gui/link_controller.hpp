@@ -15,8 +15,8 @@
 
 #include "app/gui/session_controller.hpp"
 #include "comms/link/frame_tap.hpp"
-#include "comms/robot/remote_robot.hpp"
 #include "comms/mavlink/signing.hpp"
+#include "comms/robot/remote_robot.hpp"
 #include "widgets/link/connection_dialog.hpp"
 #include "widgets/link/link_health_panel.hpp"
 

@@ -22,8 +22,8 @@
 #include "app/gui/planning_controller.hpp"
 #include "app/gui/session_controller.hpp"
 #include "comms/robot/arcos_robot.hpp"
-#include "core/mission/map_building_mission.hpp"
 #include "core/geometry/types.hpp"
+#include "core/mission/map_building_mission.hpp"
 #include "widgets/link/link_health_panel.hpp"
 
 namespace irgs::gui {

@@ -10,8 +10,8 @@
 
 #include "core/estimation/caster_profile.hpp"
 #include "core/estimation/mouse_odometry.hpp"
-#include "core/sim/diff_drive.hpp"
 #include "core/geometry/geometry_queries.hpp"
+#include "core/sim/diff_drive.hpp"
 #include "core/sim/random.hpp"
 #include "core/world/moving_obstacle.hpp"
 
