@@ -41,6 +41,8 @@ static_assert(same(mav::IrgsMotionReason::kNone, motion::Reason::kNone) &&
               same(mav::IrgsMotionReason::kNoProgress, motion::Reason::kNoProgress) &&
               same(mav::IrgsMotionReason::kSafety, motion::Reason::kSafety) &&
               same(mav::IrgsMotionReason::kNoSensors, motion::Reason::kNoSensors));
+// motion::Reason::kNoAnswer is the ground station's own verdict on a start nobody answered
+// (MavlinkMotionClient); no robot sends it, so the dialect has no value for it.
 
 constexpr std::uint8_t kTurnAbsolute =
     static_cast<std::uint8_t>(mav::IrgsMotionFlags::kTurnAbsolute);
