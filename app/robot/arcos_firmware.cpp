@@ -53,18 +53,27 @@ Pose2 ArcosFirmware::reportedPose() const {
   return {p.x(), p.y(), wrapAngle(odom.theta - origin_.theta)};
 }
 
-void ArcosFirmware::receiveBytes(std::span<const std::uint8_t> bytes, double now_s) {
+void ArcosFirmware::receiveBytes(std::span<const std::uint8_t> bytes, double now_s,
+                                 std::optional<double> earliest_s) {
   packets_.clear();
   stats_.packets += decoder_.feed(bytes, packets_);
   // Over a serial line the packets of one read arrived one after the other, the last one now.
+  // A reader that read late (earliest_s: the bytes may have come any time since) cannot tell
+  // when they arrived: they are spread over that window, so a command is lost for coming too
+  // soon only when it certainly did, not because the emulator itself was not scheduled.
   const double byte_s = config_.link_baud ? 10.0 / *config_.link_baud : 0.0;
-  std::size_t bytes_after = 0;
-  for (const arcos::Packet& packet : packets_)
-    bytes_after += packet.size + arcos::kOverhead;
-  for (const arcos::Packet& packet : packets_) {
-    bytes_after -= packet.size + arcos::kOverhead;
-    onPacket(packet.payload(), now_s - static_cast<double>(bytes_after) * byte_s);
+  const double even_gap_s =
+      earliest_s && !packets_.empty()
+          ? std::max(0.0, now_s - *earliest_s) / static_cast<double>(packets_.size())
+          : 0.0;
+  std::vector<double>& arrivals = arrival_scratch_;
+  arrivals.assign(packets_.size(), now_s);
+  for (std::size_t i = packets_.size(); i-- > 1;) {
+    const double wire_s = static_cast<double>(packets_[i].size + arcos::kOverhead) * byte_s;
+    arrivals[i - 1] = arrivals[i] - std::max(wire_s, even_gap_s);
   }
+  for (std::size_t i = 0; i < packets_.size(); ++i)
+    onPacket(packets_[i].payload(), arrivals[i]);
 }
 
 void ArcosFirmware::reply(std::span<const std::uint8_t> payload) {

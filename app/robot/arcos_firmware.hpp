@@ -83,7 +83,10 @@ class ArcosFirmware {
   // Throws std::invalid_argument for non-positive periods.
   ArcosFirmware(Simulator sim, ArcosFirmwareConfig config = {});
 
-  void receiveBytes(std::span<const std::uint8_t> bytes, double now_s);
+  // The bytes of one read, taken at now_s. earliest_s: when the reader last looked, if the bytes
+  // may have arrived any time since (a late poll); without it they came just before now_s.
+  void receiveBytes(std::span<const std::uint8_t> bytes, double now_s,
+                    std::optional<double> earliest_s = std::nullopt);
   // Steps the simulator up to now_s and emits the SIPs that fall due.
   void advance(double now_s);
   std::vector<std::uint8_t> takeOutput();
@@ -119,6 +122,7 @@ class ArcosFirmware {
   ArcosServerState state_ = ArcosServerState::kWaitSync0;
   comms::arcos::PacketDecoder decoder_;
   std::vector<comms::arcos::Packet> packets_;
+  std::vector<double> arrival_scratch_;  // receiveBytes: each packet's arrival time
   std::vector<std::uint8_t> output_;
   ArcosFirmwareStats stats_;
 

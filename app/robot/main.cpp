@@ -513,7 +513,9 @@ int main(int argc, char** argv) {
   std::vector<irgs::comms::mavlink::Frame> tapped;
   irgs::app::ArrivalRateMeter manual_controls;
   // The served protocol, whichever it is.
-  const auto receive = [&](std::span<const std::uint8_t> bytes, double now_s) {
+  // earliest_s: the bytes may have arrived any time since (the previous poll of the pty).
+  const auto receive = [&](std::span<const std::uint8_t> bytes, double now_s,
+                           std::optional<double> earliest_s = std::nullopt) {
     if (core) {
       tapped.clear();
       tap.feed(bytes, tapped);
@@ -523,7 +525,7 @@ int main(int argc, char** argv) {
       }
       core->receiveBytes(bytes, now_s);
     } else {
-      arcos->receiveBytes(bytes, now_s);
+      arcos->receiveBytes(bytes, now_s, earliest_s);
     }
   };
   const auto advance = [&core, &arcos](double now_s) {
@@ -608,8 +610,21 @@ int main(int argc, char** argv) {
       boost::asio::post(io->context(), [&listener] { listener->open(); });
     }
 
-    // The stepping loop: every dt of wall time, read, advance the simulator to now, write.
+    // The pty is read on every tick, and in strict ARCOS mode also every millisecond, like the
+    // Pioneer's command processor: how close two commands came is then measured to a
+    // millisecond, not to the 10 ms of a simulator step.
     std::vector<std::uint8_t> rx;
+    std::optional<double> last_poll_s;
+    const auto pollPty = [&](double now_s) {
+      rx.clear();
+      pty->poll(rx);
+      if (!rx.empty())
+        receive(rx, now_s, last_poll_s);
+      last_poll_s = now_s;
+    };
+    auto poll_timer = std::make_unique<boost::asio::steady_timer>(io->context());
+
+    // The stepping loop: every dt of wall time, read, advance the simulator to now, write.
     Clock::time_point next = start;
     Clock::time_point last_write = start;
     bool was_moving = false;                   // --log-motion
@@ -618,17 +633,23 @@ int main(int argc, char** argv) {
     // Set on the io thread at shutdown: a timer completion already queued when the timer is
     // destroyed still runs (with success), and must not touch the destroyed timer.
     bool stopping = false;
+    std::function<void()> fast_poll = [&] {
+      if (stopping)
+        return;
+      pollPty(seconds(Clock::now()));
+      poll_timer->expires_after(std::chrono::milliseconds(1));
+      poll_timer->async_wait([&fast_poll](const boost::system::error_code& ec) {
+        if (!ec)
+          fast_poll();
+      });
+    };
     std::function<void()> tick = [&] {
       if (stopping)
         return;
       const Clock::time_point now = Clock::now();
       const double now_s = seconds(now);
-      if (pty) {
-        rx.clear();
-        pty->poll(rx);
-        if (!rx.empty())
-          receive(rx, now_s);
-      }
+      if (pty)
+        pollPty(now_s);
       advance(now_s);
       if (options.log_motion) {
         const irgs::VelocityCommand v = simulator.trueVelocity();
@@ -673,6 +694,8 @@ int main(int argc, char** argv) {
       });
     };
     boost::asio::post(io->context(), tick);
+    if (pty && options.strict)
+      boost::asio::post(io->context(), fast_poll);
 
     for (;;) {
       timespec wait{0, 100'000'000};
@@ -684,6 +707,7 @@ int main(int argc, char** argv) {
     boost::asio::post(io->context(), [&] {
       stopping = true;
       timer.reset();
+      poll_timer.reset();
       listener.reset();
       stopped.set_value();
     });

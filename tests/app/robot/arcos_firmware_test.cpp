@@ -384,6 +384,34 @@ TEST(ArcosFirmware, StrictModeOnASerialLineSpreadsAReadAtTheBytesTime) {
   EXPECT_EQ(fast.fw.stats().too_soon, 1u);
 }
 
+TEST(ArcosFirmware, StrictModeBlamesTheClientOnlyForWhatCertainlyCameTooSoon) {
+  const std::vector<std::uint8_t> pair =
+      concat(arcos::commandPacket(Command::kVel, 200), arcos::commandPacket(Command::kRVel, 20));
+  // Polled every millisecond: the pair came within 1 ms, so the RVEL was too soon.
+  Client prompt("p3dx", true, strict(115200));
+  prompt.handshake();
+  prompt.t += 0.02;
+  prompt.fw.receiveBytes(pair, prompt.t, prompt.t - 0.001);
+  EXPECT_EQ(prompt.fw.stats().too_soon, 1u);
+  // Read 25 ms after the previous poll (the emulator was not scheduled): the two may have come
+  // 12 ms apart, as a client that spaces its commands sends them. Both are taken.
+  Client late("p3dx", true, strict(115200));
+  late.handshake();
+  late.t += 0.02;
+  late.fw.receiveBytes(pair, late.t, late.t - 0.025);
+  EXPECT_EQ(late.fw.stats().too_soon, 0u);
+  EXPECT_EQ(late.fw.stats().commands, 2u);
+  // Four in 8 ms are at most 2 ms apart wherever they fell: after each one it takes, the
+  // command processor loses what comes within 5 ms (the second and the third).
+  Client crowded("p3dx", true, strict(115200));
+  crowded.handshake();
+  crowded.t += 0.02;
+  const std::vector<std::uint8_t> four = concat(concat(pair, arcos::commandPacket(Command::kSetO)),
+                                                arcos::commandPacket(arcos::kPulse));
+  crowded.fw.receiveBytes(four, crowded.t, crowded.t - 0.008);
+  EXPECT_EQ(crowded.fw.stats().too_soon, 2u);
+}
+
 TEST(ArcosFirmware, StrictModeIgnoresAPacketWithMoreThanOneCommand) {
   Client c("p3dx", true, strict());
   c.handshake();
