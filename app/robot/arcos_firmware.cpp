@@ -17,8 +17,6 @@ namespace {
 
 constexpr double kHeadingGain = 3.0;                    // 1/s, HEAD/DHEAD proportional control
 constexpr double kHeadingDeadband_rad = degToRad(0.5);  // "heading reached"
-constexpr double kMoveGain = 1.5;                       // 1/s, MOVE proportional control
-constexpr double kMoveSpeed_mps = 0.4;                  // MOVE's travel speed cap
 constexpr double kMoveDone_m = 0.005;
 constexpr double kStallAfter_s = 0.2;  // commanded but not moving this long: wheels stalled
 constexpr std::uint8_t kBatteryDecivolts = 125;  // a charged 12 V lead-acid pack
@@ -169,6 +167,9 @@ void ArcosFirmware::onCommand(std::uint8_t number, std::optional<int> argument, 
     move_remaining_m_ = arg / 1000.0;
     move_last_pose_ = sim_.odometryPose();
     velocity_mps_ = 0.0;
+  } else if (isCommand(number, Command::kSetV)) {
+    if (arg > 0)
+      move_speed_mps_ = arg / 1000.0;  // the speed of position moves (MOVE)
   } else if (isCommand(number, Command::kRVel)) {
     heading_mode_ = Heading::kRate;
     rot_velocity_radps_ = degToRad(arg);
@@ -216,8 +217,12 @@ void ArcosFirmware::applyControl() {
   const double max_speed = sim_.profile().limits.max_speed_mps;
   const double max_turn = sim_.profile().limits.max_turn_rate_radps;
   if (move_remaining_m_) {
-    const double cap = std::min(kMoveSpeed_mps, max_speed);
-    command.linear_mps = std::clamp(kMoveGain * *move_remaining_m_, -cap, cap);
+    // A trapezoidal profile, as ARCOS runs a position move: at the SETV speed, braking at the
+    // profile's deceleration to stop on the distance.
+    const double cap = std::min(move_speed_mps_, max_speed);
+    const double braking =
+        std::sqrt(2.0 * sim_.profile().limits.max_accel_mps2 * std::abs(*move_remaining_m_));
+    command.linear_mps = std::copysign(std::min(cap, braking), *move_remaining_m_);
   } else {
     command.linear_mps = velocity_mps_;
   }

@@ -54,13 +54,16 @@ struct ArcosFirmwareConfig {
   std::optional<double> watchdog_s;     // default: the profile's arcos.watchdog_s (2 s)
   bool motors_enabled_at_start = true;  // as MobileSim; a real P3 waits for ENABLE 1
   bool strict = false;                  // drop and count what a real robot would (see above)
-  // Baud of the serial line the bytes come over (irgs-robot on a pty): strict mode spreads the
-  // packets of one read at its byte time. Empty: they arrive together (TCP).
+  // Baud of the serial line the bytes come over (irgs-robot on a pty, or behind a TCP bridge
+  // with --baud): strict mode spreads the packets of one read at its byte time. Empty: they
+  // arrive together (TCP).
   std::optional<std::uint32_t> link_baud;
 };
 
 // Strict mode's command processor: a command closer than this to the previous one is lost.
 inline constexpr double kStrictCommandSpacing_s = 0.005;
+// MOVE's speed until a SETV sets it (m/s).
+inline constexpr double kMoveSpeed_mps = 0.4;
 // Strict mode: the largest byte count a client command packet may announce.
 inline constexpr std::size_t kStrictMaxByteCount = 249;
 
@@ -136,6 +139,7 @@ class ArcosFirmware {
   // Motion set points: translational velocity or a MOVE goal; rotational velocity or a heading.
   double velocity_mps_ = 0.0;
   std::optional<double> move_remaining_m_;  // MOVE: distance left, signed
+  double move_speed_mps_ = kMoveSpeed_mps;  // SETV
   Pose2 move_last_pose_;
   Heading heading_mode_ = Heading::kFree;
   double rot_velocity_radps_ = 0.0;

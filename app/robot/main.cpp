@@ -71,7 +71,9 @@ const char* const kUsage =
     "  --baud N limits the pty output to N/10 bytes/s like a UART\n"
     "  (default 115200); below 38400 the compact profile is sent (IRGS_POSE_2D 10 Hz,\n"
     "  IRGS_SONAR_SCAN 5 Hz), also over --tcp/--udp (a bridge to a serial link: only the pty\n"
-    "  is paced). --rate HZ: odometry and sonar telemetry rate (default 20).\n"
+    "  is paced; strict ARCOS takes the packets of one read as that link delivered them, one\n"
+    "  after the other at its byte time). --rate HZ: odometry and sonar telemetry rate\n"
+    "  (default 20).\n"
     "  --gcs-timeout S: stop when ground-station heartbeats are missing S seconds (1.5).\n"
     "  --ideal: no odometry or sensor errors. Defaults: bundled default map and thesis robot.\n"
     "  --log-motion: print 'motion start|stop t=S mono=S' on stdout when the robot starts or\n"
@@ -100,6 +102,7 @@ struct Options {
   fs::path signing_key;              // --signing-key
   std::string link;
   std::uint32_t baud = 115200;
+  bool baud_given = false;  // --baud: over --tcp/--udp, the serial link behind a bridge
   double rate_hz = 20.0;
   double gcs_timeout_s = 1.5;
   bool ideal = false;
@@ -188,6 +191,7 @@ std::string parseOptions(int argc, char** argv, Options& o, bool& help) {
         if (number < 300 || number > 4000000)
           return "--baud: must be 300-4000000";
         o.baud = static_cast<std::uint32_t>(number);
+        o.baud_given = true;
       }
     } else if (arg == "--protocol") {
       if (!value(v) || (v != "mavlink" && v != "arcos"))
@@ -497,8 +501,10 @@ int main(int argc, char** argv) {
       irgs::app::ArcosFirmwareConfig arcos_config;
       arcos_config.watchdog_s = options.watchdog_s;
       arcos_config.strict = options.strict;
-      if (!options.listen)
-        arcos_config.link_baud = options.baud;  // the pty is paced like a UART at this baud
+      // The pty is paced like a UART at this baud; over TCP/UDP an explicit --baud names the
+      // serial line behind the bridge, whose bytes came one after the other at that pace.
+      if (!options.listen || options.baud_given)
+        arcos_config.link_baud = options.baud;
       arcos = std::make_unique<irgs::app::ArcosFirmware>(std::move(sim), arcos_config);
     } else {
       core = std::make_unique<irgs::app::FirmwareCore>(std::move(sim), fw_config);

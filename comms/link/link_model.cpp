@@ -55,7 +55,10 @@ void LinkModel::send(std::span<const std::uint8_t> bytes, double now_s) {
       b = static_cast<std::uint8_t>(b ^ (1u << std::min(bit, 7)));
       ++stats_.corrupted;
     }
-    const double arrival = std::max(afterStalls(line + config_.delay_s + jitter), last_arrival_s_);
+    // In order, and never faster than the far end's UART puts them out: bytes a stall or the
+    // jitter held back come after it one byte time apart, not all at once.
+    const double arrival =
+        std::max(afterStalls(line + config_.delay_s + jitter), last_arrival_s_ + byte_time);
     last_arrival_s_ = arrival;
     queue_.push_back({arrival, b});
   }

@@ -2,8 +2,9 @@
 // A model of one direction of a slow, late, lossy serial link — a Bluetooth SPP module on a UART,
 // a radio modem — for tests and for the irgs-linkem relay: bytes leave one at a time at the
 // baud rate (10 bits a byte: 8N1), arrive a latency (plus uniform jitter per write) later in
-// the order they were sent, are held while the link stalls (every stall_every_s for stall_s,
-// delivered in a burst after), and each byte may be lost or have a bit flipped. Pure: the time
+// the order they were sent and no closer than a byte time (the far end's UART), are held while
+// the link stalls (every stall_every_s for stall_s, delivered at the baud after), and each byte
+// may be lost or have a bit flipped. Pure: the time
 // is the caller's (a simulated clock or the wall clock), and the same seed and writes give the
 // same deliveries.
 

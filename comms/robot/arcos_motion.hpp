@@ -10,7 +10,12 @@
 //    host only watches (behind 150-250 ms of link, 5 deg took 2.0x the in-process time, with
 //    the host's late corrections, 1.5 deg 1.3x);
 //  - RVEL within it (the last degree of a turn): one ARCOS degree is coarser than the 1-degree
-//    turn tolerance, and a rate nudges instead.
+//    turn tolerance, and a rate nudges instead;
+//  - MOVE (after SETV, its speed) for a straight drive toward a fixed end — a DRIVE, a leg of
+//    SEGMENTS: the robot stops on the distance by itself, so a late or stalled link cannot carry
+//    it past the end (behind 400-600 ms and 0.5 s stalls, host-timed legs ran coverage into a
+//    wall). One MOVE per leg; sent again for what is left when the robot stands still
+//    kMoveRetry_s after it (a MOVE lost on the way, or one that stopped short).
 // The ArcosCommandScheduler sends only changed values, at most 10 packets a second within the
 // baud budget. Pure: no I/O, no threads; ArcosRobot steps it on its I/O thread (pure and unit
 // tested here).
@@ -28,6 +33,11 @@ namespace irgs::comms {
 
 struct ArcosMotionSetpoint {
   int vel_mmps = 0;
+  // A straight drive the robot runs itself: a new MOVE (mm) at this SETV (mm/s) when set;
+  // otherwise, while `moving`, the translational slot is left to the MOVE already sent.
+  std::optional<int> move_mm;
+  int move_speed_mmps = 0;
+  bool moving = false;
   std::optional<int> head_deg;  // HEAD argument (ARCOS odometry frame, 0..359), else RVEL
   int rvel_degps = 0;
   friend bool operator==(const ArcosMotionSetpoint&, const ArcosMotionSetpoint&) = default;
@@ -41,6 +51,7 @@ class ArcosMotion {
   // Reports nobody takes are dropped oldest first beyond this many (storage stays bounded).
   static constexpr std::size_t kMaxKeptReports = 256;
   static constexpr double kHeadPhase_rad = degToRad(1.5);
+  static constexpr double kMoveRetry_s = 2.0;
 
   explicit ArcosMotion(const RobotProfile& profile);
 
@@ -67,11 +78,21 @@ class ArcosMotion {
  private:
   void collect();
   void keep(const motion::MotionReport& report);
+  // The translational part of a step on a straight drive: a MOVE when this drive has none yet.
+  void translate(const motion::StepOutcome::Distance& distance, ArcosMotionSetpoint& setpoint);
+
+  // The MOVE the robot runs for the current straight drive: where it ends (odometry frame) and
+  // when it was sent.
+  struct MoveSent {
+    Vec2 end = Vec2::Zero();
+    double sent_s = 0.0;
+  };
 
   motion::MotionExecutor executor_;
   MotionLimits limits_;
   std::optional<motion::MotionInput> last_input_;
   std::vector<motion::MotionReport> reports_;
+  std::optional<MoveSent> move_;
   bool stop_owed_ = false;
 };
 

@@ -141,12 +141,19 @@ struct ArcosRobot::Impl : std::enable_shared_from_this<ArcosRobot::Impl> {
       wantVelocity(arcosVelocityArguments(wanted, profile.limits), t);
   }
 
-  // A primitive's set points: speed and, far from the heading to reach, that heading (HEAD) for
-  // the robot's own controller; near it a turn rate (arcos_motion.hpp).
+  // A primitive's set points: speed, or a MOVE on a straight drive, and, far from the heading to
+  // reach, that heading (HEAD) for the robot's own controller; near it a turn rate
+  // (arcos_motion.hpp).
   void wantSetpoint(const ArcosMotionSetpoint& setpoint, double t) {
     if (session.state() != arc::ArcosState::kConnected)
       return;
-    session.commands().want({arc::Command::kVel, setpoint.vel_mmps});
+    if (setpoint.move_mm) {
+      session.commands().sendOnce(
+          arc::commandPayload(arc::Command::kSetV, setpoint.move_speed_mmps));
+      session.commands().want({arc::Command::kMove, *setpoint.move_mm});
+    } else if (!setpoint.moving) {
+      session.commands().want({arc::Command::kVel, setpoint.vel_mmps});
+    }
     if (setpoint.head_deg)
       session.commands().want({arc::Command::kHead, *setpoint.head_deg});
     else

@@ -57,6 +57,7 @@ StepOutcome DrivePrimitive::step(const MotionInput& in, const SonarMemory& sonar
       approachSpeed(remaining, geometry_->max_accel_mps2, settings_->min_speed_mps, speed_mps_);
   out.command = straightCommand(in.odometry.theta, start_.theta, forward ? v : -v);
   out.heading_rad = start_.theta;
+  out.distance = StepOutcome::Distance{forward ? remaining : -remaining, speed_mps_};
   return out;
 }
 

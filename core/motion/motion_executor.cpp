@@ -127,6 +127,7 @@ const WallFollowControl* MotionExecutor::wallFollower() const {
 VelocityCommand MotionExecutor::step(const MotionInput& input) {
   sonar_.update(input);
   heading_setpoint_.reset();
+  distance_setpoint_.reset();
   if (!status_.running)
     return {};
   const Pose2& p = input.odometry;
@@ -154,6 +155,7 @@ VelocityCommand MotionExecutor::step(const MotionInput& input) {
   if (out.finished)
     return {};
   heading_setpoint_ = out.heading_rad;
+  distance_setpoint_ = out.distance;
   return out.command;
 }
 

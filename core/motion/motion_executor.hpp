@@ -56,6 +56,11 @@ class MotionExecutor {
   // The heading the last step's command steers toward, when the primitive has one (see
   // StepOutcome::heading_rad): for a robot that holds a heading itself.
   const std::optional<double>& headingSetpoint() const { return heading_setpoint_; }
+  // The straight drive the last step was on, when it was one (StepOutcome::distance): for a
+  // robot that drives a distance itself.
+  const std::optional<StepOutcome::Distance>& distanceSetpoint() const {
+    return distance_setpoint_;
+  }
 
   bool running() const { return status_.running; }
   const ExecutorStatus& status() const { return status_; }
@@ -83,6 +88,7 @@ class MotionExecutor {
       active_;
   ExecutorStatus status_;
   std::optional<double> heading_setpoint_;
+  std::optional<StepOutcome::Distance> distance_setpoint_;
   std::array<MotionReport, kReportCapacity> reports_{};
   std::size_t report_head_ = 0;
   std::size_t report_count_ = 0;

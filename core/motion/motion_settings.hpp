@@ -47,6 +47,15 @@ struct StepOutcome {
   // straight leg's hold heading, the wall follower's approach heading): a robot that holds a
   // heading itself (ARCOS HEAD) is given this instead of the turn rate.
   std::optional<double> heading_rad;
+  // A straight drive toward a fixed end (a DRIVE's distance, a SEGMENTS leg): the distance left
+  // along the heading (negative: backwards) and the speed to cover it at. A robot that drives a
+  // distance itself (ARCOS MOVE) is given this instead of the speed, so a late link cannot carry
+  // it past the end.
+  struct Distance {
+    double remaining_m = 0.0;
+    double speed_mps = 0.0;
+  };
+  std::optional<Distance> distance;
   std::array<Note, 4> notes{};
   std::uint8_t note_count = 0;
   bool finished = false;
@@ -61,6 +70,7 @@ struct StepOutcome {
     finished = true;
     command = {};
     heading_rad.reset();
+    distance.reset();
   }
 };
 

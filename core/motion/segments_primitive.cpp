@@ -124,6 +124,7 @@ StepOutcome SegmentsPrimitive::drive(const MotionInput& in, const SonarMemory& s
   v *= std::max(0.0, std::cos(heading_error));
   out.command = {v, omega};
   out.heading_rad = aim;
+  out.distance = StepOutcome::Distance{remaining, speed_mps_};
   return out;
 }
 

@@ -55,6 +55,17 @@ TEST(LinkModel, AStallHoldsDeliveriesAndReleasesThemInABurstAfter) {
   EXPECT_EQ(link.receive(30.1).size(), 1u);
 }
 
+TEST(LinkModel, WhatAStallHeldComesOutAtTheBaudAfterIt) {
+  // 9600 baud: a byte every 1.04 ms. Ten bytes sent during the stall leave the far end one byte
+  // time apart after it, as its UART puts them out, not all at 20.5 s.
+  LinkModel link({.baud = 9600, .stall_every_s = 20.0, .stall_s = 0.5});
+  link.send(bytes(10), 20.1);
+  EXPECT_TRUE(link.receive(20.4999).empty());
+  EXPECT_EQ(link.receive(20.5).size(), 1u);
+  EXPECT_EQ(link.receive(20.5 + 4.5 * 10.0 / 9600).size(), 4u);
+  EXPECT_EQ(link.receive(20.6).size(), 5u);
+}
+
 TEST(LinkModel, LossAndCorruptionAtTheirRatesSameSeedSameBytes) {
   const LinkModelConfig config{.loss = 0.01, .corruption = 0.02, .seed = 3};
   LinkModel a(config), b(config);

@@ -75,7 +75,13 @@ TEST(ArcosMotion, NearTheHeadingTheHostNudgesWithARateAndReportsDoneWhenSettled)
   EXPECT_DOUBLE_EQ(reports.back().time_s, 0.3);
 }
 
-TEST(ArcosMotion, ADriveSetsTheSpeedAndEndsAtItsDistance) {
+TelemetrySample movingAt(double t, const Pose2& pose, double speed_mps) {
+  TelemetrySample s = sipAt(t, pose);
+  s.measured_velocity.linear_mps = speed_mps;
+  return s;
+}
+
+TEST(ArcosMotion, ADriveIsOneMoveTheRobotStopsOnByItselfAtItsSpeed) {
   ArcosMotion m(testing::thesisRobot());
   m.onSample(sipAt(0.0, {}), 0.0);
   motion::DriveSpec drive;
@@ -85,12 +91,62 @@ TEST(ArcosMotion, ADriveSetsTheSpeedAndEndsAtItsDistance) {
   m.start({7, drive});
   const auto going = m.onSample(sipAt(0.1, {0.01, 0, 0}), 0.0);
   ASSERT_TRUE(going.has_value());
-  EXPECT_EQ(going->vel_mmps, 200);
+  ASSERT_TRUE(going->move_mm.has_value());
+  EXPECT_EQ(*going->move_mm, 490);  // what is left from where the SIP says it is
+  EXPECT_EQ(going->move_speed_mmps, 200);
   EXPECT_FALSE(going->head_deg.has_value());  // on its heading: no HEAD
+  // Under way: the translational slot is left to the MOVE, nothing new is sent.
+  const auto under_way = m.onSample(movingAt(1.0, {0.2, 0, 0}, 0.2), 0.0);
+  ASSERT_TRUE(under_way.has_value());
+  EXPECT_TRUE(under_way->moving);
+  EXPECT_FALSE(under_way->move_mm.has_value());
   const auto there = m.onSample(sipAt(2.6, {0.5, 0, 0}), 0.0);
   ASSERT_TRUE(there.has_value());
-  EXPECT_EQ(there->vel_mmps, 0);
+  EXPECT_EQ(*there, ArcosMotionSetpoint{});  // ended: VEL 0 ends the MOVE too
   EXPECT_EQ(m.takeReports().back().kind, motion::ReportKind::kDone);
+}
+
+TEST(ArcosMotion, AMoveTheRobotDidNotRunIsSentAgainForWhatIsLeft) {
+  ArcosMotion m(testing::thesisRobot());
+  m.onSample(sipAt(0.0, {}), 0.0);
+  motion::DriveSpec drive;
+  drive.distance_m = 1.0;
+  drive.stop_at_wall = false;
+  m.start({3, drive});
+  ASSERT_TRUE(m.onSample(sipAt(0.1, {}), 0.0)->move_mm.has_value());
+  // Standing still, but not for kMoveRetry_s yet (the link is late): wait.
+  EXPECT_FALSE(m.onSample(sipAt(1.5, {}), 0.0)->move_mm.has_value());
+  // Moving at 2.5 s: the MOVE is running.
+  EXPECT_FALSE(m.onSample(movingAt(2.5, {0.3, 0, 0}, 0.2), 0.0)->move_mm.has_value());
+  // Stopped short at 0.6 m, 2 s after the MOVE: the rest is asked for.
+  const auto again = m.onSample(sipAt(2.7, {0.6, 0, 0}), 0.0);
+  ASSERT_TRUE(again->move_mm.has_value());
+  EXPECT_EQ(*again->move_mm, 400);
+}
+
+TEST(ArcosMotion, EachLegOfSegmentsIsItsOwnMoveAfterTheTurn) {
+  ArcosMotion m(testing::thesisRobot());
+  m.onSample(sipAt(0.0, {}), 0.0);
+  motion::SegmentsSpec legs;
+  legs.points[0] = {1.0, 0.0};
+  legs.points[1] = {1.0, 1.0};
+  legs.count = 2;
+  legs.stop_at_wall = false;
+  m.start({9, legs});
+  m.onSample(sipAt(0.1, {}), 0.0);  // the first turn: none needed
+  const auto first = m.onSample(sipAt(0.2, {}), 0.0);
+  ASSERT_TRUE(first->move_mm.has_value());
+  EXPECT_EQ(*first->move_mm, 1000);
+  // At the first turning point the turn comes first (HEAD, no translation), then a new MOVE.
+  const auto turning = m.onSample(sipAt(6.0, {1.0, 0, 0}), 0.0);
+  ASSERT_TRUE(turning.has_value());
+  EXPECT_FALSE(turning->moving);
+  EXPECT_EQ(turning->vel_mmps, 0);
+  const auto turned = m.onSample(sipAt(8.0, {1.0, 0, degToRad(90.0)}), 0.0);
+  const auto second =
+      turned->move_mm ? turned : m.onSample(sipAt(8.1, {1.0, 0, degToRad(90.0)}), 0.0);
+  ASSERT_TRUE(second->move_mm.has_value());
+  EXPECT_EQ(*second->move_mm, 1000);
 }
 
 TEST(ArcosMotion, ALostLinkFailsTheRunningPrimitiveAndOwesTheRobotAStop) {
