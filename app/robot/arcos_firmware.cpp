@@ -70,8 +70,16 @@ void ArcosFirmware::receiveBytes(std::span<const std::uint8_t> bytes, double now
     const double wire_s = static_cast<double>(packets_[i].size + arcos::kOverhead) * byte_s;
     arrivals[i - 1] = arrivals[i] - std::max(wire_s, even_gap_s);
   }
-  for (std::size_t i = 0; i < packets_.size(); ++i)
+  for (std::size_t i = 0; i < packets_.size(); ++i) {
+    // A serial line never delivers a packet before the previous one plus its own wire time:
+    // closer than that, a bridge or a late read bunched them (also across reads).
+    if (byte_s > 0.0 && last_arrival_s_) {
+      const double wire_s = static_cast<double>(packets_[i].size + arcos::kOverhead) * byte_s;
+      arrivals[i] = std::max(arrivals[i], *last_arrival_s_ + wire_s);
+    }
+    last_arrival_s_ = arrivals[i];
     onPacket(packets_[i].payload(), arrivals[i]);
+  }
 }
 
 void ArcosFirmware::reply(std::span<const std::uint8_t> payload) {

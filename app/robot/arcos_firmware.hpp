@@ -125,7 +125,8 @@ class ArcosFirmware {
   ArcosServerState state_ = ArcosServerState::kWaitSync0;
   comms::arcos::PacketDecoder decoder_;
   std::vector<comms::arcos::Packet> packets_;
-  std::vector<double> arrival_scratch_;  // receiveBytes: each packet's arrival time
+  std::vector<double> arrival_scratch_;   // receiveBytes: each packet's arrival time
+  std::optional<double> last_arrival_s_;  // the newest packet's (serial line: link_baud)
   std::vector<std::uint8_t> output_;
   ArcosFirmwareStats stats_;
 

@@ -412,6 +412,20 @@ TEST(ArcosFirmware, StrictModeBlamesTheClientOnlyForWhatCertainlyCameTooSoon) {
   EXPECT_EQ(crowded.fw.stats().too_soon, 2u);
 }
 
+TEST(ArcosFirmware, StrictModeOnASerialLineKnowsTwoReadsCannotBeCloserThanTheWire) {
+  // A bridge (or a late read) hands over in two reads 0.2 ms apart what a 9600-baud line
+  // delivered 9.4 ms apart: both taken. At 115200 baud the line itself brings them too close.
+  for (const auto& [baud, lost] : {std::pair{9600u, 0u}, std::pair{115200u, 1u}}) {
+    Client c("p3dx", true, strict(baud));
+    c.handshake();
+    c.t += 0.02;
+    c.command(Command::kVel, 200);
+    c.t += 0.0002;
+    c.command(Command::kRVel, 20);
+    EXPECT_EQ(c.fw.stats().too_soon, lost) << baud;
+  }
+}
+
 TEST(ArcosFirmware, StrictModeIgnoresAPacketWithMoreThanOneCommand) {
   Client c("p3dx", true, strict());
   c.handshake();
