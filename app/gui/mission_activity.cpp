@@ -5,6 +5,9 @@
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
+
+#include "core/mission/mission_feed.hpp"
 
 namespace irgs::gui {
 
@@ -25,20 +28,26 @@ void MissionActivity::onSample(const TelemetrySample& sample) {
   if (last_sample_s_ >= 0.0 && sample.time_s > last_sample_s_)
     step_s_ = std::clamp(sample.time_s - last_sample_s_, 1e-4, 1.0);
   last_sample_s_ = sample.time_s;
+  std::vector<motion::MotionReport> reports;
   if (motion_ != nullptr) {
-    for (motion::MotionReport& report : motion_->takeReports()) {
+    reports = motion_->takeReports();
+    for (motion::MotionReport& report : reports)
       report.time_s += robot_time_offset_s_;
-      reports_.push_back(report);
-    }
   }
-  // Reports and samples in time order: those up to this sample's time come first.
-  while (!reports_.empty() && reports_.front().time_s <= sample.time_s) {
-    mission_->onReport(reports_.front());
-    reports_.pop_front();
-  }
-  mission_->onSample(sample);
-  if (const std::optional<MissionRequest> request = mission_->takeRequest())
-    carryOut(*request);
+  const auto carryOutRequests = [this] {
+    takeRequests(*mission_, [this](const MissionRequest& request) { carryOut(request); });
+    return true;
+  };
+  feedInTimeOrder(
+      reports, std::span(&sample, 1),
+      [&](const motion::MotionReport& report) {
+        mission_->onReport(report);
+        return carryOutRequests();
+      },
+      [&](const TelemetrySample& s) {
+        mission_->onSample(s);
+        return carryOutRequests();
+      });
 }
 
 void MissionActivity::carryOut(const MissionRequest& request) {

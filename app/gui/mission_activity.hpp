@@ -1,14 +1,13 @@
 #pragma once
 // A host mission (core/mission/mission.hpp) as an activity of the session's runner: one more
 // kind of thing that drives the robot, beside behaviours and drive scripts. Every sample goes to
-// the mission, preceded by the reports of its primitives up to that sample's time (the robot's
-// MotionControl, reports put on session time), and the mission's request after it is carried
-// out: a primitive started or cancelled on the robot, or a velocity held by the host (for the
-// host-loop tasks of the papers and for robots without primitives). While a primitive runs the
-// host sends no velocity: the wheels are the robot's. Stopped early, the running primitive is
-// cancelled.
+// the mission with the reports of its primitives in time order (the robot's MotionControl,
+// reports put on session time; core/mission/mission_feed.hpp), and each request the mission
+// makes is carried out: a primitive started or cancelled on the robot, or a velocity held by the
+// host (for the host-loop tasks of the papers and for robots without primitives). While a primitive
+// runs the host sends no velocity: the wheels are the robot's. Stopped early, the running primitive
+// is cancelled.
 
-#include <deque>
 #include <memory>
 
 #include "app/gui/activity.hpp"
@@ -37,9 +36,8 @@ class MissionActivity final : public Activity {
   std::shared_ptr<Mission> mission_;
   MotionControl* motion_ = nullptr;
   double robot_time_offset_s_ = 0.0;
-  std::deque<motion::MotionReport> reports_;  // taken from the robot, session time, not yet due
-  std::optional<VelocityCommand> velocity_;   // held for the host loop; empty: the robot's own
-  double step_s_ = 0.01;                      // robot step, learnt from the sample spacing
+  std::optional<VelocityCommand> velocity_;  // held for the host loop; empty: the robot's own
+  double step_s_ = 0.01;                     // robot step, learnt from the sample spacing
   double last_sample_s_ = -1.0;
 };
 

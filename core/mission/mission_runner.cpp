@@ -4,6 +4,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/mission/mission_feed.hpp"
+
 namespace irgs {
 
 std::optional<std::string> MissionRunner::start(std::unique_ptr<Mission> mission, Robot& robot) {
@@ -26,7 +28,6 @@ std::optional<std::string> MissionRunner::start(Mission& mission, Robot& robot) 
   robot_ = &robot;
   finished_ = false;
   aborted_.reset();
-  waiting_.clear();
   primitives_started_ = 0;
   if (MotionControl* motion = robot.motionControl())
     motion->takeReports();  // what an earlier primitive left is not this mission's
@@ -38,24 +39,19 @@ std::optional<std::string> MissionRunner::start(Mission& mission, Robot& robot) 
 void MissionRunner::feed(const std::vector<TelemetrySample>& samples) {
   if (!running())
     return;
-  if (MotionControl* motion = robot_->motionControl()) {
-    std::vector<motion::MotionReport> reports = motion->takeReports();
-    waiting_.insert(waiting_.end(), reports.begin(), reports.end());
-  }
-  std::size_t next = 0;
-  for (const TelemetrySample& sample : samples) {
-    while (next < waiting_.size() && waiting_[next].time_s <= sample.time_s && running())
-      deliver(waiting_[next++]);
-    if (!running())
-      return;
-    deliver(sample);
-  }
-  // Reports newer than every sample: a robot reports before the telemetry of the same moment
-  // arrives, or its telemetry stalls. They go now rather than wait for a sample that may not
-  // come (a mission waiting for a final report would wait for ever).
-  while (next < waiting_.size() && running())
-    deliver(waiting_[next++]);
-  waiting_.clear();
+  std::vector<motion::MotionReport> reports;
+  if (MotionControl* motion = robot_->motionControl())
+    reports = motion->takeReports();
+  feedInTimeOrder(
+      reports, samples,
+      [this](const motion::MotionReport& report) {
+        deliver(report);
+        return running();
+      },
+      [this](const TelemetrySample& sample) {
+        deliver(sample);
+        return running();
+      });
 }
 
 void MissionRunner::deliver(const motion::MotionReport& report) {
@@ -71,7 +67,7 @@ void MissionRunner::deliver(const TelemetrySample& sample) {
 }
 
 void MissionRunner::applyRequests() {
-  while (std::optional<MissionRequest> request = mission_->takeRequest()) {
+  takeRequests(*mission_, [this](const MissionRequest& request) {
     std::visit(
         [this](const auto& r) {
           using R = std::decay_t<decltype(r)>;
@@ -88,8 +84,8 @@ void MissionRunner::applyRequests() {
             robot_->drive(r.command);
           }
         },
-        *request);
-  }
+        request);
+  });
 }
 
 void MissionRunner::finishIfDone() {

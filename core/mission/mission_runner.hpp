@@ -1,6 +1,6 @@
 #pragma once
-// Runs one host mission against a robot: the single place that feeds the mission the robot's
-// samples and primitive reports (merged in time order) and applies its requests (start or
+// Runs one host mission against a robot: feeds the mission the robot's samples and primitive
+// reports (merged in time order, mission_feed.hpp) and applies its requests (start or
 // cancel a primitive through the robot's MotionControl, or hold a velocity through drive()).
 // The GUI session, irgs-sim and the scenario runner all drive missions through it.
 
@@ -48,7 +48,6 @@ class MissionRunner {
   Robot* robot_ = nullptr;
   bool finished_ = false;
   std::optional<std::string> aborted_;
-  std::vector<motion::MotionReport> waiting_;  // reports newer than the newest sample
   int primitives_started_ = 0;
 };
 

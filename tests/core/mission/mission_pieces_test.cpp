@@ -10,6 +10,7 @@
 #include "core/mission/explored_record.hpp"
 #include "core/mission/interior_targets.hpp"
 #include "core/mission/loop_tracker.hpp"
+#include "core/mission/mission_feed.hpp"
 #include "core/mission/mission_runner.hpp"
 #include "core/mission/travel_mission.hpp"
 #include "core/sim/sim_presets.hpp"
@@ -311,6 +312,63 @@ TEST(MissionRunner, DeliversReportsBeforeTheSamplesThatFollowThem) {
   ASSERT_GE(recorder.seen.size(), 4u);
   EXPECT_EQ(recorder.seen[0], "rstarted");
   EXPECT_EQ(recorder.seen[1], "s1");
+}
+
+motion::MotionReport reportAt(double time_s, motion::ReportKind kind) {
+  motion::MotionReport r;
+  r.time_s = time_s;
+  r.kind = kind;
+  return r;
+}
+
+TelemetrySample sampleAt(double time_s) {
+  TelemetrySample s;
+  s.time_s = time_s;
+  return s;
+}
+
+// "r<time>" and "s<time>" in hundredths, in the order delivered.
+struct FeedLog {
+  std::vector<std::string> seen;
+  bool onReport(const motion::MotionReport& r) {
+    seen.push_back("r" + std::to_string(std::lround(r.time_s * 100)));
+    return true;
+  }
+  bool onSample(const TelemetrySample& s) {
+    seen.push_back("s" + std::to_string(std::lround(s.time_s * 100)));
+    return true;
+  }
+};
+
+TEST(MissionFeed, ReportsGoBeforeTheFirstSampleAtOrAfterThemAndNewerOnesAfterTheNewest) {
+  using motion::ReportKind;
+  std::vector<motion::MotionReport> reports = {reportAt(0.10, ReportKind::kStarted),
+                                               reportAt(0.20, ReportKind::kTurningPoint),
+                                               reportAt(0.35, ReportKind::kDone)};
+  const std::vector<TelemetrySample> samples = {sampleAt(0.10), sampleAt(0.20), sampleAt(0.30)};
+  FeedLog log;
+  feedInTimeOrder(
+      reports, samples, [&](const auto& r) { return log.onReport(r); },
+      [&](const auto& s) { return log.onSample(s); });
+  // The final report is newer than every sample (the telemetry of its moment is late): it goes
+  // now, not with a sample that may never come.
+  EXPECT_EQ(log.seen, (std::vector<std::string>{"r10", "s10", "r20", "s20", "s30", "r35"}));
+  EXPECT_TRUE(reports.empty());
+}
+
+TEST(MissionFeed, StopsWhereTheMissionFinished) {
+  std::vector<motion::MotionReport> reports = {reportAt(0.10, motion::ReportKind::kDone),
+                                               reportAt(0.25, motion::ReportKind::kStarted)};
+  const std::vector<TelemetrySample> samples = {sampleAt(0.10), sampleAt(0.20), sampleAt(0.30)};
+  FeedLog log;
+  feedInTimeOrder(
+      reports, samples, [&](const auto& r) { return log.onReport(r); },
+      [&](const auto& s) {
+        log.onSample(s);
+        return s.time_s < 0.15;  // finished on the sample at 0.2
+      });
+  EXPECT_EQ(log.seen, (std::vector<std::string>{"r10", "s10", "s20"}));
+  EXPECT_TRUE(reports.empty()) << "what was not delivered is not this mission's any more";
 }
 
 }  // namespace
