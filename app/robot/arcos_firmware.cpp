@@ -18,7 +18,6 @@ namespace {
 constexpr double kHeadingGain = 3.0;                    // 1/s, HEAD/DHEAD proportional control
 constexpr double kHeadingDeadband_rad = degToRad(0.5);  // "heading reached"
 constexpr double kMoveDone_m = 0.005;
-constexpr double kStallAfter_s = 0.2;  // commanded but not moving this long: wheels stalled
 constexpr std::uint8_t kBatteryDecivolts = 125;  // a charged 12 V lead-acid pack
 
 std::int16_t clampInt16(double v) {
@@ -262,11 +261,6 @@ void ArcosFirmware::advance(double now_s) {
       if (std::abs(*move_remaining_m_) < kMoveDone_m)
         move_remaining_m_ = 0.0;  // hold position: 0 m left commands zero velocity
     }
-    const VelocityCommand& cmd = sim_.command();
-    const VelocityCommand v = sim_.trueVelocity();
-    const bool commanded = std::abs(cmd.linear_mps) > 1e-3 || std::abs(cmd.angular_radps) > 1e-3;
-    const bool moving = std::abs(v.linear_mps) > 1e-4 || std::abs(v.angular_radps) > 1e-4;
-    stalled_s_ = commanded && !moving ? stalled_s_ + dt : 0.0;
     collectSonar(sample_);
     if (state_ == ArcosServerState::kOpen && sim_.time_s() + 1e-9 >= next_sip_s_) {
       sendSip();
@@ -327,8 +321,8 @@ void ArcosFirmware::sendSip() {
       clampInt16((measured.linear_mps + measured.angular_radps * half_base) * scale);
   sip.battery_decivolts = kBatteryDecivolts;
   std::uint16_t stall = 0;
-  if (stalled_s_ > kStallAfter_s)
-    stall |= 0x0101;  // both wheels: the body is blocked
+  if (sample_.drive_stalled)
+    stall |= 0x0101;  // both wheels: the body is blocked (the simulator's stall detection)
   const auto& bumpers = sim_.profile().bumpers;
   const std::uint32_t pressed = sim_.bumpers();
   int front = 0;

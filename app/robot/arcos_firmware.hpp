@@ -148,7 +148,6 @@ class ArcosFirmware {
   Pose2 origin_;                                      // odometry pose at the last SETO
   std::vector<std::optional<double>> sonar_cycle_m_;  // per disc: reading this cycle (nullopt:
                                                       // none), max range for no echo
-  double stalled_s_ = 0.0;
   TelemetrySample sample_;
 };
 

@@ -34,6 +34,11 @@ constexpr int kCollisionBisections = 16;
 constexpr double kClearanceSlack_m = 0.25;
 // A moving obstacle waits while its next position would come this close to the robot's body.
 constexpr double kMoverYield_m = 0.05;
+// The drive reports a stall (TelemetrySample::drive_stalled) once its wheels, driven faster than
+// kDrivenSpeed (m/s or rad/s), made less than kStalledFraction of their step for kStallAfter_s.
+constexpr double kDrivenSpeed = 1e-3;
+constexpr double kStalledFraction = 0.5;
+constexpr double kStallAfter_s = 0.2;
 // A sensor is due when its time has come within this much (absorbs t = n * dt rounding).
 constexpr double kScheduleEpsilon_s = 1e-9;
 
@@ -418,6 +423,10 @@ struct Simulator::Impl {
     const double dtheta = (d_right - d_left) / (drive.wheelbase_m * err.wheelbase_scale);
 
     const double fraction = moveBody(ds, dtheta);
+    // Driven wheels held still by an obstacle: what a drive's stall detection (ARCOS stall bits,
+    // a motor controller's current limit) reports once it lasts kStallAfter_s.
+    const bool driven = std::abs(target_v) > kDrivenSpeed || std::abs(target_w) > kDrivenSpeed;
+    stalled_s = driven && fraction < kStalledFraction ? stalled_s + dt : 0.0;
 
     // Encoders: quantised cumulative wheel rotation (floor, so counts are consistent in both
     // directions). Odometry: tick deltas through the NOMINAL model.
@@ -437,6 +446,7 @@ struct Simulator::Impl {
   }
   double measured_ds = 0.0;
   double measured_dtheta = 0.0;
+  double stalled_s = 0.0;  // how long the driven wheels have been held still
 
   void updateBumpers() {
     bumper_bits = 0;
@@ -563,6 +573,7 @@ struct Simulator::Impl {
     sample.left_ticks = left_ticks;
     sample.right_ticks = right_ticks;
     sample.bumpers = bumper_bits;
+    sample.drive_stalled = stalled_s >= kStallAfter_s;
     sample.proximity_m.resize(proximity.size());
     for (std::size_t i = 0; i < proximity.size(); ++i)
       sample.proximity_m[i] = proximity[i].value_m;

@@ -13,8 +13,10 @@
 //   so odometry drifts from truth exactly as configured.
 // * Collisions: the body polygon never penetrates geometry. A step that would is cut to the
 //   largest fraction that does not (bisection); the robot then stalls (velocity 0) and the
-//   encoders count only the travel made. A robot placed overlapping geometry may move freely
-//   until it is clear. An empty body outline is a point robot that never collides.
+//   encoders count only the travel made. Wheels held still while driven for 0.2 s make the
+//   sample report the drive stalled (drive_stalled), as a Pioneer's stall bits do. A robot placed
+//   overlapping geometry may move freely until it is clear. An empty body outline is a point robot
+//   that never collides.
 // * Sensors fire at their own rates; sensor i of n first fires at (i + 1) / n of its period, so
 //   they do not all fire in one step; at most one firing per sensor per step.
 // * Random numbers: one independent SimRandom stream per purpose (motion, sonar, proximity,
