@@ -358,9 +358,10 @@ TEST(FirmwareMotion, ABumperStopsTheWheelsAtOnceAndEndsADriveAsBumped) {
   EXPECT_EQ(kindsOf(reportsOf(gcs, 133)), (std::vector{ReportKind::kStarted, ReportKind::kDone}));
 }
 
-TEST(FirmwareMotion, WaypointsBlockedWithoutBumperContactFailAfterTheWatchdog) {
-  // No bumpers, the sonar stop off: the simulator holds the body at the wall, only the
-  // executor's no-progress watchdog can end it.
+TEST(FirmwareMotion, WaypointsBlockedWithoutBumperContactEndOnTheDrivesStallReport) {
+  // No bumpers, the sonar stop off: the simulator holds the body at the wall and the drive
+  // reports its wheels stalled, which ends the run as contact long before the no-progress
+  // watchdog would (that one: MotionExecutor.WaypointsThatMakeNoProgressWithoutAnyContact...).
   Rig rig(makeBumperlessCore(room(true)));
   auto& [core, gcs] = rig;
   motion::SegmentsSpec spec;
@@ -371,9 +372,9 @@ TEST(FirmwareMotion, WaypointsBlockedWithoutBumperContactFailAfterTheWatchdog) {
   const auto reports = reportsOf(gcs, 141);
   expectWellFormed(reports);
   EXPECT_EQ(reports.back().kind, ReportKind::kFailed);
-  EXPECT_EQ(reports.back().reason, Reason::kNoProgress);
+  EXPECT_EQ(reports.back().reason, Reason::kBumped);
   EXPECT_TRUE(stopped(core));
-  EXPECT_TRUE(gcs.saidSomething("segments failed: no progress"));
+  EXPECT_TRUE(gcs.saidSomething("segments failed: bumped"));
 }
 
 // ---- Status on request, compact rate, long missions ---------------------------------------------

@@ -112,6 +112,26 @@ TEST(MapBuildingMission, BuildsTheArenaWithDefaultNoiseAboveEighty) {
   EXPECT_EQ(run.result.scenario.metrics.bumper_events, 0u);
 }
 
+TEST(MapBuildingMission, APioneerP3dxWhoseCornerCatchesInATurnStillBuildsTheArena) {
+  // The P3-DX's rectangular body catches a wall when it turns on the spot in a corner, where no
+  // bumper faces the wall: only its drive's stall report tells the wall follower to back out
+  // (before, it commanded the turn for ever: 0.85 m in an hour).
+  const RobotProfileResult loaded = loadRobotProfileFile(std::filesystem::path(IRGS_SOURCE_DIR) /
+                                                         "resources/robots/pioneer_p3dx.json");
+  ASSERT_TRUE(loaded.ok());
+  const WorldMap map = test::loadBundledMap("thesis_arena_250");
+  MapBuildingMission mission(*loaded.profile, {});
+  BehaviourScenarioSpec spec;
+  spec.map = map;
+  spec.profile = *loaded.profile;
+  spec.sim = typicalSimConfig();
+  spec.max_duration_s = 600.0;
+  const BehaviourScenarioResult result = runMissionScenario(spec, mission);
+  EXPECT_FALSE(result.behaviour.failed) << result.behaviour.message;
+  const MapScore score = scoreMap(mission.grid(), map, map.start);
+  EXPECT_GE(score.f1, 0.9) << "P " << score.precision << " R " << score.recall;
+}
+
 TEST(MapBuildingMission, BuildsTheFourObstacleMapWithDefaultNoiseAboveNinetyOnSeedsOneToFive) {
   // Issue 4: one heading revision on a wrong line used to rotate everything after it (seeds
   // 1-4 gave F1 0.70, 0.82, 0.47, 0.39). The gated revisions and the learned odometry error

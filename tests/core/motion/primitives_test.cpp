@@ -257,6 +257,27 @@ TEST(MotionExecutor, AFullReportQueueDropsTheOldestAndCountsIt) {
   EXPECT_EQ(newest.kind, ReportKind::kStarted);
 }
 
+TEST(MotionExecutor, WaypointsThatMakeNoProgressWithoutAnyContactFailAfterTheWatchdog) {
+  // Held by something neither the bumpers nor the drive's stall report see (a robot without
+  // stall detection): only the no-progress watchdog ends it.
+  Rig rig;
+  MotionInput in = motionInputOf(rig.sim.step());
+  SegmentsSpec spec;
+  spec.append(Vec2(1.0, 0.0));  // straight ahead of the rig's start pose
+  spec.stop_at_wall = false;
+  ASSERT_TRUE(rig.executor.start({7, spec}, in));
+  const MotionSettings settings;
+  for (int i = 0; i < static_cast<int>((settings.no_progress_s + 1.0) / 0.01); ++i) {
+    in.time_s += 0.01;
+    rig.executor.step(in);  // the odometry never moves
+  }
+  MotionReport r, last;
+  while (rig.executor.popReport(r))
+    last = r;
+  EXPECT_EQ(last.kind, ReportKind::kFailed);
+  EXPECT_EQ(last.reason, Reason::kNoProgress);
+}
+
 TEST(MotionExecutor, ATurnHeldInContactEndsBlocked) {
   Rig rig;
   MotionInput in = motionInputOf(rig.sim.step());

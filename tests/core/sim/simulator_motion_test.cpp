@@ -168,6 +168,34 @@ TEST(SimulatorCollision, NeverPenetratesWhenArrivingAtAnAngleOrTurningAgainstAWa
   EXPECT_TRUE(bumped);
 }
 
+TEST(SimulatorCollision, WheelsHeldStillWhileDrivenReportTheDriveStalledAfterAFifthOfASecond) {
+  // A square robot without bumpers turning on the spot with a corner against the wall: only
+  // the drive can tell that the body is blocked.
+  WorldMap world = squareRoom(1.0);
+  // Its half-width 0.15 m fits below the wall at y = 1; turned by 21.5 degrees a corner
+  // reaches it.
+  world.start = {0.0, 0.8, 0.0};
+  RobotProfile no_bumpers = squareRobot();
+  no_bumpers.bumpers.clear();
+  Simulator sim(world, no_bumpers, exactConfig());
+  const auto free_turn = run(sim, {0.0, 1.0}, 10);
+  EXPECT_FALSE(free_turn.back().drive_stalled);
+  const auto held = run(sim, {0.0, 1.0}, 100);
+  std::size_t first_stalled = held.size();
+  for (std::size_t i = 0; i < held.size(); ++i)
+    if (held[i].drive_stalled && first_stalled == held.size())
+      first_stalled = i;
+  ASSERT_LT(first_stalled, held.size()) << "the corner never stopped the turn";
+  EXPECT_EQ(held.back().bumpers, 0u);
+  EXPECT_TRUE(held.back().drive_stalled);
+  // Once blocked it stays so (the command keeps pushing); 0.2 s = 20 steps after the block.
+  const double blocked_at = held[first_stalled].time_s - 0.2;
+  EXPECT_GT(blocked_at, free_turn.back().time_s);
+  // Commanded to stop, or driven out, it is no longer stalled.
+  EXPECT_FALSE(run(sim, {0.0, 0.0}, 1).back().drive_stalled);
+  EXPECT_FALSE(run(sim, {0.0, -1.0}, 30).back().drive_stalled);
+}
+
 TEST(SimulatorCollision, StopsAtARasterWall) {
   WorldMap world = emptyWorld();
   RasterLayer layer;
