@@ -84,7 +84,7 @@ port_of() {  # "irgs-robot: ... tcp PORT" / "linkem: listening on HOST:PORT"
 }
 
 one_run() {  # map protocol case
-  local map="$1" protocol="$2" case="$3" name dir local_dir baud robot_args url link_args
+  local map="$1" protocol="$2" case="$3" name dir local_dir baud robot_args url url_extra link_args
   name="$(basename "${map%.*}")"
   dir="$out/$name-$protocol-$case"
   local_dir="$(inprocess "$map" "$protocol")"

@@ -59,23 +59,22 @@ void ArcosFirmware::receiveBytes(std::span<const std::uint8_t> bytes, double now
   // when they arrived: they are spread over that window, so a command is lost for coming too
   // soon only when it certainly did, not because the emulator itself was not scheduled.
   const double byte_s = config_.link_baud ? 10.0 / *config_.link_baud : 0.0;
+  const auto wire_s = [&](std::size_t i) {
+    return static_cast<double>(packets_[i].size + arcos::kOverhead) * byte_s;
+  };
   const double even_gap_s =
       earliest_s && !packets_.empty()
           ? std::max(0.0, now_s - *earliest_s) / static_cast<double>(packets_.size())
           : 0.0;
   std::vector<double>& arrivals = arrival_scratch_;
   arrivals.assign(packets_.size(), now_s);
-  for (std::size_t i = packets_.size(); i-- > 1;) {
-    const double wire_s = static_cast<double>(packets_[i].size + arcos::kOverhead) * byte_s;
-    arrivals[i - 1] = arrivals[i] - std::max(wire_s, even_gap_s);
-  }
+  for (std::size_t i = packets_.size(); i-- > 1;)
+    arrivals[i - 1] = arrivals[i] - std::max(wire_s(i), even_gap_s);
   for (std::size_t i = 0; i < packets_.size(); ++i) {
     // A serial line never delivers a packet before the previous one plus its own wire time:
     // closer than that, a bridge or a late read bunched them (also across reads).
-    if (byte_s > 0.0 && last_arrival_s_) {
-      const double wire_s = static_cast<double>(packets_[i].size + arcos::kOverhead) * byte_s;
-      arrivals[i] = std::max(arrivals[i], *last_arrival_s_ + wire_s);
-    }
+    if (byte_s > 0.0 && last_arrival_s_)
+      arrivals[i] = std::max(arrivals[i], *last_arrival_s_ + wire_s(i));
     last_arrival_s_ = arrivals[i];
     onPacket(packets_[i].payload(), arrivals[i]);
   }

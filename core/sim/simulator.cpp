@@ -317,7 +317,7 @@ struct Simulator::Impl {
   }
 
   // Moves the true pose by the arc (ds, dtheta), cut short where the body would touch geometry
-  // (then the drive stalls); returns the fraction of the step made.
+  // (then the drive stalls, and reports it once that lasts); returns the fraction of the step made.
   double moveBody(double ds, double dtheta) {
     const double dt = config.dt_s;
     double fraction = 1.0;
@@ -346,6 +346,11 @@ struct Simulator::Impl {
       clearance -= travel;
       clearance_fresh = false;
     }
+    // Driven wheels held still by an obstacle: what a drive's stall detection (ARCOS stall bits,
+    // a motor controller's current limit) reports once it lasts kStallAfter_s.
+    const bool driven = std::abs(command.linear_mps) > kDrivenSpeed ||
+                        std::abs(command.angular_radps) > kDrivenSpeed;
+    stalled_s = driven && fraction < kStalledFraction ? stalled_s + dt : 0.0;
     return fraction;
   }
 
@@ -423,10 +428,6 @@ struct Simulator::Impl {
     const double dtheta = (d_right - d_left) / (drive.wheelbase_m * err.wheelbase_scale);
 
     const double fraction = moveBody(ds, dtheta);
-    // Driven wheels held still by an obstacle: what a drive's stall detection (ARCOS stall bits,
-    // a motor controller's current limit) reports once it lasts kStallAfter_s.
-    const bool driven = std::abs(target_v) > kDrivenSpeed || std::abs(target_w) > kDrivenSpeed;
-    stalled_s = driven && fraction < kStalledFraction ? stalled_s + dt : 0.0;
 
     // Encoders: quantised cumulative wheel rotation (floor, so counts are consistent in both
     // directions). Odometry: tick deltas through the NOMINAL model.
